@@ -1,0 +1,482 @@
+//! `proctex`: the command-line face of the analyzer. Exit codes: 0 success, 1 bad input or a
+//! failed operation (the message says which), 2 bad usage.
+
+use std::path::Path;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use proctex::analyze::{Options, analyze_bytes};
+use proctex::evaluate::{distances, fidelity, synthesize};
+use proctex::input::{Crop, Photo};
+use proctex::params::Params;
+use proctex::render::{Image, View, period_texels, render};
+use proctex::spectrum::Estimator;
+use proctex::{Error, Result};
+
+const MAIN_HELP: &str = "\
+proctex — turn a photo of a material into a procedural texture (Lagae et al. 2009)
+
+USAGE:
+    proctex <COMMAND> [ARGS] [OPTIONS]
+
+COMMANDS:
+    analyze   PHOTO → params JSON
+    render    params JSON → PNG (CPU reference renderer)
+    synth     PHOTO → analysed texture rendered at exactly the photo's pixel size
+    evaluate  texture distances between two images
+    fidelity  synthesis-vs-photo distance ratios (the README's fidelity table)
+    help      this text; `proctex <COMMAND> --help` for a command
+
+Exit codes: 0 success, 1 bad input or failed operation, 2 bad usage.";
+
+const ANALYZE_HELP: &str = "\
+proctex analyze PHOTO [-o PARAMS.json] [--json] [OPTIONS]
+
+Analyses PHOTO (PNG, JPEG, WebP, GIF, BMP, TIFF; 8/16-bit; EXIF orientation applied) and
+writes the texture parameters (format proctex/1).
+
+OPTIONS:
+    -o, --output FILE       write the params JSON to FILE
+    --json                  print the params JSON to stdout (the summary goes to stderr)
+    --size N                analysis size: 256, 512 (default), 1024 or 2048; larger photos
+                            are area-averaged until their longer side is N
+    --crop X,Y,W,H          analyse only this rectangle (photo pixels)
+    --no-histogram          no histogram matching (Lagae §5); knots are still stored
+    --knots K               inverse-CDF intervals (default 10, at most 32)
+    --seed S                seed of the noise (default 1)
+    --estimator E           deconvolved (default) or lagae (the paper's eq. 9)
+    --no-periodic           skip the periodic+smooth decomposition before the FFT";
+
+const RENDER_HELP: &str = "\
+proctex render PARAMS.json -o OUT.png [OPTIONS]
+
+Renders the texture with the CPU reference renderer.
+
+OPTIONS:
+    -o, --output FILE       the PNG to write (required)
+    --size N                N×N pixels
+    --width W --height H    W×H pixels (default: the analysed photo's size, else 512×512)
+    --pixel-size P          world units per pixel (default 1 = one photo pixel)
+    --origin X,Y            world coordinates of the top-left corner (default 0,0)
+    --solid-z Z             render the solid (3D) texture's slice at world z = Z
+    --period                render exactly one period of the texture (a seamless tile)
+    --depth 8|16            bits per channel of the PNG (default 8)";
+
+const SYNTH_HELP: &str = "\
+proctex synth PHOTO -o OUT.png [--seed S] [analyze OPTIONS]
+
+Analyses PHOTO and renders the texture at exactly PHOTO's pixel size (or the crop's), at the
+photo's scale. Accepts the options of `analyze`.";
+
+const EVALUATE_HELP: &str = "\
+proctex evaluate A.png B.png [--json]
+
+Prints texture distances between A and B (any sizes):
+    spectrum_db  RMS difference in dB of radially averaged luminance power spectra
+    colour       sliced Wasserstein-1 distance of the RGB distributions";
+
+const FIDELITY_HELP: &str = "\
+proctex fidelity PHOTO... [--seeds N] [--json] [analyze OPTIONS]
+
+For each photo: splits it into left and right halves A and B, synthesises from each half
+(seeds 1..N, default 3) and compares with the other half. Prints d(A,B), the mean
+d(synthesis, other half), and their ratio (near 1: as close as another patch of the same
+material).";
+
+/// Minimal argument cursor: positional arguments and `--flag [value]` options.
+struct Args {
+    items: Vec<String>,
+    pos: usize,
+}
+
+fn usage(msg: impl Into<String>) -> Error {
+    Error::Option(msg.into())
+}
+
+impl Args {
+    fn next(&mut self) -> Option<String> {
+        let v = self.items.get(self.pos).cloned();
+        self.pos += 1;
+        v
+    }
+    fn value(&mut self, flag: &str) -> Result<String> {
+        self.next()
+            .ok_or_else(|| usage(format!("{flag} needs a value")))
+    }
+    fn parsed<T: std::str::FromStr>(&mut self, flag: &str) -> Result<T> {
+        let v = self.value(flag)?;
+        v.parse()
+            .map_err(|_| usage(format!("{flag}: `{v}` is not a valid value")))
+    }
+}
+
+fn read(path: &str) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|e| Error::Io {
+        path: path.into(),
+        message: e.to_string(),
+    })
+}
+
+fn write_png(path: &str, img: &Image, depth16: bool) -> Result<()> {
+    let io = |e: image::ImageError| Error::Io {
+        path: path.into(),
+        message: e.to_string(),
+    };
+    if !path.to_ascii_lowercase().ends_with(".png") {
+        return Err(usage(format!("{path}: output must be a .png file")));
+    }
+    if depth16 {
+        let buf: image::ImageBuffer<image::Rgb<u16>, Vec<u16>> =
+            image::ImageBuffer::from_raw(img.width, img.height, img.to_rgb16())
+                .expect("buffer size matches");
+        buf.save(path).map_err(io)
+    } else {
+        image::save_buffer(
+            path,
+            &img.to_rgb8(),
+            img.width,
+            img.height,
+            image::ExtendedColorType::Rgb8,
+        )
+        .map_err(io)
+    }
+}
+
+/// Parses an analysis option at `flag`; returns false when `flag` is not one.
+fn analysis_flag(flag: &str, a: &mut Args, o: &mut Options) -> Result<bool> {
+    match flag {
+        "--size" => o.size = a.parsed(flag)?,
+        "--crop" => o.crop = Some(Crop::parse(&a.value(flag)?)?),
+        "--no-histogram" => o.histogram = false,
+        "--knots" => o.knots = a.parsed(flag)?,
+        "--seed" => o.seed = a.parsed(flag)?,
+        "--no-periodic" => o.periodic = false,
+        "--estimator" => {
+            o.estimator = match a.value(flag)?.as_str() {
+                "lagae" => Estimator::Lagae,
+                "deconvolved" => Estimator::Deconvolved,
+                other => {
+                    return Err(usage(format!(
+                        "--estimator: `{other}` is not `lagae` or `deconvolved`"
+                    )));
+                }
+            }
+        }
+        _ => return Ok(false),
+    }
+    o.validate()?;
+    Ok(true)
+}
+
+fn summary(p: &Params, ms: f64) -> String {
+    let mut s = String::new();
+    let n = p.noise().expect("noise model");
+    if let Some(src) = &p.source {
+        s += &format!(
+            "photo {}×{}, analysed at {}×{} ({} estimator) in {ms:.1} ms\n",
+            src.width, src.height, src.analysis_width, src.analysis_height, src.estimator
+        );
+    }
+    s += &format!(
+        "mean rgb {:.3} {:.3} {:.3}; {} bands (finest first); histogram {}\n",
+        p.colour.mean[0],
+        p.colour.mean[1],
+        p.colour.mean[2],
+        n.bands(),
+        if n.histogram.enabled { "on" } else { "off" }
+    );
+    for c in 0..3 {
+        let w: Vec<String> = n.weights[c].iter().map(|v| format!("{v:.4}")).collect();
+        s += &format!("  channel {c} weights: {}\n", w.join(" "));
+    }
+    s += &format!(
+        "period: {} texels ({} world units)",
+        period_texels(p),
+        period_texels(p) as f64 * p.transform.scale as f64
+    );
+    s
+}
+
+fn cmd_analyze(mut a: Args) -> Result<()> {
+    let mut o = Options::default();
+    let (mut photo, mut out, mut json) = (None, None, false);
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{ANALYZE_HELP}");
+                return Ok(());
+            }
+            "-o" | "--output" => out = Some(a.value(&arg)?),
+            "--json" => json = true,
+            f if analysis_flag(f, &mut a, &mut o)? => {}
+            f if f.starts_with('-') => return Err(usage(format!("analyze: unknown option {f}"))),
+            _ if photo.is_none() => photo = Some(arg),
+            _ => return Err(usage(format!("analyze: unexpected argument `{arg}`"))),
+        }
+    }
+    let photo = photo.ok_or_else(|| usage("analyze: which photo? (proctex analyze PHOTO)"))?;
+    let bytes = read(&photo)?;
+    let t = Instant::now();
+    let analysis = analyze_bytes(&bytes, &o)?;
+    let ms = t.elapsed().as_secs_f64() * 1e3;
+    let text = analysis.params.to_json();
+    if let Some(path) = &out {
+        std::fs::write(path, &text).map_err(|e| Error::Io {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
+    }
+    if json {
+        println!("{text}");
+        eprintln!("{}", summary(&analysis.params, ms));
+    } else {
+        println!("{}", summary(&analysis.params, ms));
+        if let Some(path) = &out {
+            println!("wrote {path}");
+        }
+    }
+    Ok(())
+}
+
+fn cmd_render(mut a: Args) -> Result<()> {
+    let (mut params_path, mut out) = (None, None);
+    let (mut width, mut height): (Option<u32>, Option<u32>) = (None, None);
+    let mut view = View::default();
+    let (mut solid_z, mut period, mut depth16) = (None, false, false);
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{RENDER_HELP}");
+                return Ok(());
+            }
+            "-o" | "--output" => out = Some(a.value(&arg)?),
+            "--size" => {
+                let n = a.parsed(&arg)?;
+                width = Some(n);
+                height = Some(n);
+            }
+            "--width" => width = Some(a.parsed(&arg)?),
+            "--height" => height = Some(a.parsed(&arg)?),
+            "--pixel-size" => view.pixel_size = a.parsed(&arg)?,
+            "--origin" => {
+                let v = a.value(&arg)?;
+                let xy: Vec<f32> = v.split(',').filter_map(|s| s.trim().parse().ok()).collect();
+                if xy.len() != 2 {
+                    return Err(usage(format!("--origin: expected X,Y, got `{v}`")));
+                }
+                view.origin = [xy[0], xy[1]];
+            }
+            "--solid-z" => solid_z = Some(a.parsed::<f32>(&arg)?),
+            "--period" => period = true,
+            "--depth" => {
+                depth16 = match a.value(&arg)?.as_str() {
+                    "8" => false,
+                    "16" => true,
+                    d => return Err(usage(format!("--depth: `{d}` is not 8 or 16"))),
+                }
+            }
+            f if f.starts_with('-') => return Err(usage(format!("render: unknown option {f}"))),
+            _ if params_path.is_none() => params_path = Some(arg),
+            _ => return Err(usage(format!("render: unexpected argument `{arg}`"))),
+        }
+    }
+    let params_path =
+        params_path.ok_or_else(|| usage("render: which params file? (proctex render PARAMS)"))?;
+    let out = out.ok_or_else(|| usage("render: -o OUT.png is required"))?;
+    let text = String::from_utf8(read(&params_path)?)
+        .map_err(|_| Error::params("(document)", "not UTF-8 text"))?;
+    let mut params = Params::from_json(&text)?;
+    let (dw, dh) = params
+        .source
+        .as_ref()
+        .map(|s| match s.crop {
+            Some(c) => (c[2], c[3]),
+            None => (s.width, s.height),
+        })
+        .unwrap_or((512, 512));
+    let (w, h) = (width.unwrap_or(dw), height.unwrap_or(dh));
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err(usage(format!(
+            "image size {w}×{h} must be 1..=16384 a side"
+        )));
+    }
+    if !(view.pixel_size.is_finite() && view.pixel_size > 0.0) {
+        return Err(usage("--pixel-size must be a positive number"));
+    }
+    if let Some(z) = solid_z {
+        params.solid = true;
+        view.z = z;
+    }
+    if period {
+        params.transform.rotation_deg = 0.0;
+        let p = period_texels(&params) as f32 * params.transform.scale;
+        view.origin = [0.0, 0.0];
+        view.pixel_size = p / w.max(h) as f32;
+        eprintln!(
+            "one period: {p} world units; {} world units per pixel",
+            view.pixel_size
+        );
+    }
+    let img = render(&params, w, h, &view);
+    write_png(&out, &img, depth16)?;
+    println!("wrote {out} ({w}×{h})");
+    Ok(())
+}
+
+fn cmd_synth(mut a: Args) -> Result<()> {
+    let mut o = Options::default();
+    let (mut photo, mut out) = (None, None);
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{SYNTH_HELP}");
+                return Ok(());
+            }
+            "-o" | "--output" => out = Some(a.value(&arg)?),
+            f if analysis_flag(f, &mut a, &mut o)? => {}
+            f if f.starts_with('-') => return Err(usage(format!("synth: unknown option {f}"))),
+            _ if photo.is_none() => photo = Some(arg),
+            _ => return Err(usage(format!("synth: unexpected argument `{arg}`"))),
+        }
+    }
+    let photo = photo.ok_or_else(|| usage("synth: which photo? (proctex synth PHOTO -o OUT)"))?;
+    let out = out.ok_or_else(|| usage("synth: -o OUT.png is required"))?;
+    let decoded = Photo::decode(&read(&photo)?)?;
+    let region = match o.crop {
+        Some(c) => decoded.crop(c)?,
+        None => decoded,
+    };
+    let o = Options { crop: None, ..o };
+    let syn = synthesize(&region, &o)?;
+    let img = Image {
+        width: syn.width,
+        height: syn.height,
+        pixels: syn.pixels,
+    };
+    write_png(&out, &img, false)?;
+    println!("wrote {out} ({}×{})", img.width, img.height);
+    Ok(())
+}
+
+fn load_photo(path: &str) -> Result<Photo> {
+    Photo::decode(&read(path)?).map_err(|e| match e {
+        Error::Decode(m) => Error::Decode(format!("{path}: {m}")),
+        other => other,
+    })
+}
+
+fn cmd_evaluate(mut a: Args) -> Result<()> {
+    let mut files = Vec::new();
+    let mut json = false;
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{EVALUATE_HELP}");
+                return Ok(());
+            }
+            "--json" => json = true,
+            f if f.starts_with('-') => return Err(usage(format!("evaluate: unknown option {f}"))),
+            _ => files.push(arg),
+        }
+    }
+    if files.len() != 2 {
+        return Err(usage(
+            "evaluate: needs exactly two images (proctex evaluate A B)",
+        ));
+    }
+    let (pa, pb) = (load_photo(&files[0])?, load_photo(&files[1])?);
+    let d = distances(&pa, &pb);
+    if json {
+        println!("{}", serde_json::to_string(&d).expect("serialisable"));
+    } else {
+        println!("spectrum_db {:.4}\ncolour {:.5}", d.spectrum_db, d.colour);
+    }
+    Ok(())
+}
+
+fn cmd_fidelity(mut a: Args) -> Result<()> {
+    let mut o = Options::default();
+    let mut files = Vec::new();
+    let (mut nseeds, mut json) = (3u32, false);
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{FIDELITY_HELP}");
+                return Ok(());
+            }
+            "--seeds" => nseeds = a.parsed(&arg)?,
+            "--json" => json = true,
+            f if analysis_flag(f, &mut a, &mut o)? => {}
+            f if f.starts_with('-') => return Err(usage(format!("fidelity: unknown option {f}"))),
+            _ => files.push(arg),
+        }
+    }
+    if files.is_empty() || nseeds == 0 {
+        return Err(usage("fidelity: needs at least one photo and --seeds ≥ 1"));
+    }
+    let seeds: Vec<u32> = (1..=nseeds).collect();
+    if !json {
+        println!(
+            "{:<36} {:>9} {:>9} {:>7}   {:>8} {:>8} {:>7}",
+            "photo", "dB(A,B)", "dB(S,B)", "ratio", "col(A,B)", "col(S,B)", "ratio"
+        );
+    }
+    for f in &files {
+        let photo = load_photo(f)?;
+        let r = fidelity(&photo, &o, &seeds)?;
+        let name = Path::new(f)
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| f.clone());
+        if json {
+            println!("{}", serde_json::json!({ "photo": name, "result": r }));
+        } else {
+            println!(
+                "{:<36} {:>9.3} {:>9.3} {:>7.2}   {:>8.4} {:>8.4} {:>7.2}",
+                name,
+                r.halves.spectrum_db,
+                r.synthesis.spectrum_db,
+                r.spectrum_ratio,
+                r.halves.colour,
+                r.synthesis.colour,
+                r.colour_ratio
+            );
+        }
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let mut items: Vec<String> = std::env::args().skip(1).collect();
+    if items.is_empty() {
+        eprintln!("{MAIN_HELP}");
+        return ExitCode::from(2);
+    }
+    let cmd = items.remove(0);
+    let args = Args { items, pos: 0 };
+    let result = match cmd.as_str() {
+        "analyze" => cmd_analyze(args),
+        "render" => cmd_render(args),
+        "synth" => cmd_synth(args),
+        "evaluate" => cmd_evaluate(args),
+        "fidelity" => cmd_fidelity(args),
+        "help" | "-h" | "--help" => {
+            println!("{MAIN_HELP}");
+            Ok(())
+        }
+        other => Err(usage(format!(
+            "unknown command `{other}`; run `proctex help`"
+        ))),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e @ Error::Option(_)) => {
+            eprintln!("proctex: {e}");
+            ExitCode::from(2)
+        }
+        Err(e) => {
+            eprintln!("proctex: {e}");
+            ExitCode::from(1)
+        }
+    }
+}

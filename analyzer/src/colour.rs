@@ -1,0 +1,273 @@
+//! Colour decorrelation (Lagae §6): mean RGB and the principal axes of the 3×3 covariance.
+//!
+//! The basis is stored as a proper rotation (rows are the principal axes, determinant +1) with a
+//! deterministic sign convention, so that it can be turned into a quaternion and slerped when
+//! morphing (Lagae §8). Degenerate covariances (grey photos, flat colours) get a canonical basis
+//! instead of whatever an eigen-solver happens to return.
+
+/// Mean and principal axes of a set of RGB values.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pca {
+    /// Mean RGB.
+    pub mean: [f64; 3],
+    /// Rows are unit principal axes, by decreasing variance; a rotation (det +1).
+    pub basis: [[f64; 3]; 3],
+    /// Variance along each axis.
+    pub variance: [f64; 3],
+}
+
+/// Mean and covariance of `pixels`.
+pub fn mean_covariance(pixels: &[[f32; 3]]) -> ([f64; 3], [[f64; 3]; 3]) {
+    let n = pixels.len().max(1) as f64;
+    let mut mean = [0.0f64; 3];
+    for p in pixels {
+        for c in 0..3 {
+            mean[c] += p[c] as f64;
+        }
+    }
+    mean.iter_mut().for_each(|m| *m /= n);
+    let mut cov = [[0.0f64; 3]; 3];
+    for p in pixels {
+        let d = [
+            p[0] as f64 - mean[0],
+            p[1] as f64 - mean[1],
+            p[2] as f64 - mean[2],
+        ];
+        for i in 0..3 {
+            for j in i..3 {
+                cov[i][j] += d[i] * d[j];
+            }
+        }
+    }
+    for i in 0..3 {
+        for j in i..3 {
+            cov[i][j] /= n;
+            cov[j][i] = cov[i][j];
+        }
+    }
+    (mean, cov)
+}
+
+/// Principal component analysis of `pixels`.
+pub fn pca(pixels: &[[f32; 3]]) -> Pca {
+    let (mean, cov) = mean_covariance(pixels);
+    let (values, vectors) = symmetric_eigen(cov);
+    let scale = values[0].abs().max(1e-12);
+    // Two eigenvalues closer than this (relative to the largest) span a degenerate plane.
+    let tol = 1e-7;
+    let mut axes = vectors;
+    if values[0] <= 1e-14 {
+        // Flat image: no colour variation at all.
+        axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let lum = normalize([1.0, 1.0, 1.0]);
+        axes[0] = lum;
+        axes[1] = canonical_orthogonal(lum);
+    } else if (values[1] - values[2]).abs() <= tol * scale {
+        // The 2nd and 3rd axes are not determined (grey photo): pick a canonical pair.
+        fix_sign(&mut axes[0]);
+        axes[1] = canonical_orthogonal(axes[0]);
+    } else {
+        fix_sign(&mut axes[0]);
+        fix_sign(&mut axes[1]);
+    }
+    axes[2] = cross(axes[0], axes[1]);
+    Pca {
+        mean,
+        basis: axes,
+        variance: values.map(|v| v.max(0.0)),
+    }
+}
+
+/// Sign convention: the component of largest magnitude is positive (first one on ties).
+fn fix_sign(v: &mut [f64; 3]) {
+    let mut k = 0;
+    for i in 1..3 {
+        if v[i].abs() > v[k].abs() + 1e-12 {
+            k = i;
+        }
+    }
+    if v[k] < 0.0 {
+        v.iter_mut().for_each(|x| *x = -*x);
+    }
+}
+
+/// A fixed unit vector orthogonal to `a`: Gram–Schmidt on (1, −1, 0), or on (0, 1, −1) when that
+/// is (nearly) parallel to `a`.
+fn canonical_orthogonal(a: [f64; 3]) -> [f64; 3] {
+    for cand in [[1.0, -1.0, 0.0], [0.0, 1.0, -1.0], [1.0, 0.0, 0.0]] {
+        let d = dot(cand, a);
+        let v = [cand[0] - d * a[0], cand[1] - d * a[1], cand[2] - d * a[2]];
+        if dot(v, v) > 1e-6 {
+            let mut v = normalize(v);
+            fix_sign(&mut v);
+            return v;
+        }
+    }
+    unreachable!("three independent candidates cannot all be parallel to one vector")
+}
+
+/// Dot product.
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Cross product.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn normalize(v: [f64; 3]) -> [f64; 3] {
+    let l = dot(v, v).sqrt();
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+
+/// Eigen-decomposition of a symmetric 3×3 matrix by cyclic Jacobi rotations. Returns eigenvalues
+/// in decreasing order and the matching unit eigenvectors as rows. Deterministic and exact to
+/// rounding for these sizes.
+pub fn symmetric_eigen(m: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+    let mut a = m;
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _sweep in 0..50 {
+        let off = a[0][1].powi(2) + a[0][2].powi(2) + a[1][2].powi(2);
+        let diag = a[0][0].powi(2) + a[1][1].powi(2) + a[2][2].powi(2);
+        if off <= 1e-30 * diag.max(1e-300) {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q].abs() < 1e-300 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let s = t * c;
+            // A ← Jᵀ A J
+            for k in 0..3 {
+                let akp = a[k][p];
+                let akq = a[k][q];
+                a[k][p] = c * akp - s * akq;
+                a[k][q] = s * akp + c * akq;
+            }
+            for k in 0..3 {
+                let apk = a[p][k];
+                let aqk = a[q][k];
+                a[p][k] = c * apk - s * aqk;
+                a[q][k] = s * apk + c * aqk;
+            }
+            // V ← V J (columns are eigenvectors)
+            for k in 0..3 {
+                let vkp = v[k][p];
+                let vkq = v[k][q];
+                v[k][p] = c * vkp - s * vkq;
+                v[k][q] = s * vkp + c * vkq;
+            }
+        }
+    }
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|&i, &j| a[j][j].total_cmp(&a[i][i]).then(i.cmp(&j)));
+    let values = order.map(|i| a[i][i]);
+    let vectors = order.map(|i| [v[0][i], v[1][i], v[2][i]]);
+    (values, vectors)
+}
+
+/// Determinant of a 3×3 matrix given by rows.
+pub fn det3(m: [[f64; 3]; 3]) -> f64 {
+    dot(m[0], cross(m[1], m[2]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check_rotation(b: [[f64; 3]; 3]) {
+        for i in 0..3 {
+            for j in 0..3 {
+                let d = dot(b[i], b[j]);
+                let want = if i == j { 1.0 } else { 0.0 };
+                assert!((d - want).abs() < 1e-9, "{b:?}");
+            }
+        }
+        assert!((det3(b) - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn eigen_of_known_matrix() {
+        let m = [[4.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 0.0, 1.0]];
+        let (vals, vecs) = symmetric_eigen(m);
+        let s5 = 5.0f64.sqrt();
+        assert!((vals[0] - (7.0 + s5) / 2.0).abs() < 1e-12);
+        assert!((vals[1] - (7.0 - s5) / 2.0).abs() < 1e-12);
+        assert!((vals[2] - 1.0).abs() < 1e-12);
+        for k in 0..3 {
+            let v = vecs[k];
+            let mv = [dot(m[0], v), dot(m[1], v), dot(m[2], v)];
+            for c in 0..3 {
+                assert!((mv[c] - vals[k] * v[c]).abs() < 1e-10);
+            }
+        }
+    }
+
+    #[test]
+    fn colour_photo_gives_rotation_and_decorrelates() {
+        let pixels: Vec<[f32; 3]> = (0..5000)
+            .map(|i| {
+                let a = ((i * 7919) % 1000) as f32 / 1000.0;
+                let b = ((i * 104_729) % 997) as f32 / 997.0;
+                [0.2 + 0.5 * a, 0.1 + 0.4 * a + 0.1 * b, 0.3 - 0.2 * b]
+            })
+            .collect();
+        let p = pca(&pixels);
+        check_rotation(p.basis);
+        assert!(p.variance[0] >= p.variance[1] && p.variance[1] >= p.variance[2]);
+        // Projected channels are uncorrelated.
+        let proj: Vec<[f64; 3]> = pixels
+            .iter()
+            .map(|px| {
+                let d = [0, 1, 2].map(|c| px[c] as f64 - p.mean[c]);
+                p.basis.map(|axis| dot(axis, d))
+            })
+            .collect();
+        for i in 0..3 {
+            for j in (i + 1)..3 {
+                let (mut sij, mut sii, mut sjj) = (0.0, 0.0, 0.0);
+                for v in &proj {
+                    sij += v[i] * v[j];
+                    sii += v[i] * v[i];
+                    sjj += v[j] * v[j];
+                }
+                if sii > 1e-12 && sjj > 1e-12 {
+                    assert!((sij / (sii * sjj).sqrt()).abs() < 1e-6);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn grey_and_flat_photos_get_canonical_bases() {
+        let grey: Vec<[f32; 3]> = (0..1000).map(|i| [(i % 37) as f32 / 37.0; 3]).collect();
+        let p = pca(&grey);
+        check_rotation(p.basis);
+        let s3 = 1.0 / 3.0f64.sqrt();
+        for c in 0..3 {
+            assert!((p.basis[0][c] - s3).abs() < 1e-9);
+        }
+        assert!(p.variance[1].abs() < 1e-12 && p.variance[2].abs() < 1e-12);
+        // Same answer for another grey photo: the basis does not depend on noise.
+        let grey2: Vec<[f32; 3]> = (0..500).map(|i| [(i % 11) as f32 / 11.0; 3]).collect();
+        let q = pca(&grey2);
+        for r in 0..3 {
+            for c in 0..3 {
+                assert!((p.basis[r][c] - q.basis[r][c]).abs() < 1e-9);
+            }
+        }
+        let flat = vec![[0.3f32, 0.6, 0.1]; 100];
+        let f = pca(&flat);
+        check_rotation(f.basis);
+        assert!((f.mean[1] - 0.6).abs() < 1e-6);
+    }
+}

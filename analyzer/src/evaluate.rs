@@ -1,0 +1,213 @@
+//! Texture distances, to judge a synthesis against a photo of the same material.
+//!
+//! Two distances, both independent of image size so that crops of different sizes compare:
+//! - **spectrum**: RMS difference, in dB, of the radially averaged power spectra of luminance,
+//!   in 24 rings of a quarter octave from 1/128 to 1/2 cycle per pixel. A ring's value is the
+//!   variance it holds (sum of `|F|²/N²`), so it does not scale with the number of pixels.
+//! - **colour**: sliced Wasserstein-1 distance between the two RGB distributions, averaged over
+//!   13 fixed directions (the axes, face and body diagonals of the RGB cube), in colour units.
+//!
+//! The fidelity protocol ([`fidelity`]) synthesises from one patch of a photo and compares with
+//! another patch, relative to the distance between the two patches themselves.
+
+use crate::analyze::{Options, analyze_photo};
+use crate::error::Result;
+use crate::input::{Crop, Photo};
+use crate::render::{View, render};
+use crate::spectrum::spectrum_real;
+
+/// Distances between two textures.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Distances {
+    /// Radially averaged power spectrum distance, RMS dB.
+    pub spectrum_db: f64,
+    /// Sliced Wasserstein-1 colour distance.
+    pub colour: f64,
+}
+
+const RINGS_PER_OCTAVE: usize = 4;
+const OCTAVES: usize = 6;
+
+/// Power per ring (quarter-octave rings from 2^−7 to 2^−1 cycles per pixel) of the luminance.
+pub fn radial_spectrum(p: &Photo) -> Vec<f64> {
+    let (w, h) = (p.width as usize, p.height as usize);
+    let lum: Vec<f32> = p
+        .pixels
+        .iter()
+        .map(|c| 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2])
+        .collect();
+    let mean = lum.iter().map(|&v| v as f64).sum::<f64>() / lum.len() as f64;
+    let centred: Vec<f32> = lum.iter().map(|&v| v - mean as f32).collect();
+    let spec = spectrum_real(&centred, w, h, true);
+    let rings = RINGS_PER_OCTAVE * OCTAVES;
+    let mut out = vec![0.0f64; rings];
+    let norm = (w as f64 * h as f64).powi(2);
+    for q in 0..w {
+        let fx = q.min(w - q) as f64 / w as f64;
+        for r in 0..h {
+            let fy = r.min(h - r) as f64 / h as f64;
+            let rho = (fx * fx + fy * fy).sqrt();
+            if rho <= 0.0 || rho > 0.5 {
+                continue;
+            }
+            // Ring 0 is the finest: (2^−1.25, 2^−1].
+            let k = (-(rho.log2()) - 1.0) * RINGS_PER_OCTAVE as f64;
+            let k = k.floor() as i64;
+            if k < 0 || k as usize >= rings {
+                continue;
+            }
+            out[k as usize] += spec[q * h + r].norm_sqr() as f64 / norm;
+        }
+    }
+    out
+}
+
+/// Quantile function of `v` at `count` mid-probabilities.
+fn quantiles(mut v: Vec<f32>, count: usize) -> Vec<f64> {
+    v.sort_unstable_by(f32::total_cmp);
+    let n = v.len();
+    (0..count)
+        .map(|i| {
+            let pos = (i as f64 + 0.5) / count as f64 * (n - 1) as f64;
+            let k = pos.floor() as usize;
+            let f = pos - k as f64;
+            v[k] as f64 * (1.0 - f) + v[(k + 1).min(n - 1)] as f64 * f
+        })
+        .collect()
+}
+
+fn directions() -> Vec<[f32; 3]> {
+    let mut d = vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for (a, b) in [(0, 1), (0, 2), (1, 2)] {
+        for s in [1.0f32, -1.0] {
+            let mut v = [0.0f32; 3];
+            v[a] = std::f32::consts::FRAC_1_SQRT_2;
+            v[b] = s * std::f32::consts::FRAC_1_SQRT_2;
+            d.push(v);
+        }
+    }
+    let k = 1.0 / 3.0f32.sqrt();
+    for (sy, sz) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+        d.push([k, sy * k, sz * k]);
+    }
+    d
+}
+
+/// Sliced Wasserstein-1 distance between the colour distributions of `a` and `b`.
+pub fn colour_distance(a: &Photo, b: &Photo) -> f64 {
+    let dirs = directions();
+    let mut total = 0.0;
+    for d in &dirs {
+        let proj = |p: &Photo| -> Vec<f32> {
+            p.pixels
+                .iter()
+                .map(|c| c[0] * d[0] + c[1] * d[1] + c[2] * d[2])
+                .collect()
+        };
+        let qa = quantiles(proj(a), 512);
+        let qb = quantiles(proj(b), 512);
+        total += qa.iter().zip(&qb).map(|(x, y)| (x - y).abs()).sum::<f64>() / qa.len() as f64;
+    }
+    total / dirs.len() as f64
+}
+
+/// Both distances.
+pub fn distances(a: &Photo, b: &Photo) -> Distances {
+    let (sa, sb) = (radial_spectrum(a), radial_spectrum(b));
+    let mut sum = 0.0;
+    let mut count = 0;
+    for (x, y) in sa.iter().zip(&sb) {
+        if *x > 0.0 || *y > 0.0 {
+            let d = 10.0 * ((x + 1e-12).log10() - (y + 1e-12).log10());
+            sum += d * d;
+            count += 1;
+        }
+    }
+    Distances {
+        spectrum_db: if count > 0 {
+            (sum / count as f64).sqrt()
+        } else {
+            0.0
+        },
+        colour: colour_distance(a, b),
+    }
+}
+
+/// Result of the fidelity protocol on one photo.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Fidelity {
+    /// Distance between the two halves of the photo.
+    pub halves: Distances,
+    /// Mean distance between a synthesis from one half and the other half.
+    pub synthesis: Distances,
+    /// `synthesis.spectrum_db / halves.spectrum_db`.
+    pub spectrum_ratio: f64,
+    /// `synthesis.colour / halves.colour`.
+    pub colour_ratio: f64,
+}
+
+/// Analyses and renders a texture of exactly the photo's pixel size (what `proctex synth`
+/// does).
+pub fn synthesize(photo: &Photo, opts: &Options) -> Result<Photo> {
+    let a = analyze_photo(photo, opts)?;
+    let world_per_pixel = 1.0; // world units are photo pixels
+    let img = render(
+        &a.params,
+        photo.width,
+        photo.height,
+        &View {
+            pixel_size: world_per_pixel,
+            ..View::default()
+        },
+    );
+    Ok(img.to_photo())
+}
+
+/// The fidelity protocol: quadrants top-left/bottom-left and top-right/bottom-right of the
+/// photo are pairs (A, B) of different patches of one material; synthesise from A (at A's pixel
+/// size) and compare with B, and from B against A, for each seed; divide the mean distance by
+/// the mean `d(A, B)`. (Quadrants stacked vertically, not the left and right halves: several
+/// game textures are 2×2 tilings with a half-tile offset whose right half is the left half
+/// shifted, which would make `d(A, B)` zero.)
+pub fn fidelity(photo: &Photo, opts: &Options, seeds: &[u32]) -> Result<Fidelity> {
+    let (hw, hh) = (photo.width / 2, photo.height / 2);
+    let quad = |x: u32, y: u32| photo.crop(Crop { x, y, w: hw, h: hh });
+    let pairs = [
+        (quad(0, 0)?, quad(0, photo.height - hh)?),
+        (
+            quad(photo.width - hw, 0)?,
+            quad(photo.width - hw, photo.height - hh)?,
+        ),
+    ];
+    let (mut hs, mut hc) = (0.0, 0.0);
+    let (mut s, mut c, mut n) = (0.0, 0.0, 0.0);
+    for (a, b) in &pairs {
+        let d = distances(a, b);
+        hs += d.spectrum_db / pairs.len() as f64;
+        hc += d.colour / pairs.len() as f64;
+        for &seed in seeds {
+            let o = Options { seed, ..*opts };
+            for (src, other) in [(a, b), (b, a)] {
+                let syn = synthesize(src, &o)?;
+                let d = distances(&syn, other);
+                s += d.spectrum_db;
+                c += d.colour;
+                n += 1.0;
+            }
+        }
+    }
+    let halves = Distances {
+        spectrum_db: hs,
+        colour: hc,
+    };
+    let synthesis = Distances {
+        spectrum_db: s / n,
+        colour: c / n,
+    };
+    Ok(Fidelity {
+        halves,
+        synthesis,
+        spectrum_ratio: synthesis.spectrum_db / halves.spectrum_db.max(1e-9),
+        colour_ratio: synthesis.colour / halves.colour.max(1e-9),
+    })
+}

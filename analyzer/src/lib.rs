@@ -1,0 +1,21 @@
+//! Proctex analyzer: turns a photo of a material into the parameters of a procedural texture
+//! (Lagae et al. 2009, "Isotropic stochastic procedural textures by example"), renders those
+//! parameters on the CPU (the reference the GPU shaders are compared against), and measures how
+//! close a texture is to a photo.
+//!
+//! Pure Rust: no web or GPU dependency. Data flow:
+//! `bytes → input::Photo → analyze::analyze → params::Params → render::render → image`.
+
+pub mod analyze;
+pub mod colour;
+pub mod error;
+pub mod evaluate;
+pub mod histogram;
+pub mod input;
+pub mod noise;
+pub mod params;
+pub mod render;
+pub mod rng;
+pub mod spectrum;
+
+pub use error::{Error, Result};

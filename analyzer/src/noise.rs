@@ -1,0 +1,407 @@
+//! Wavelet noise (Cook & DeRose 2005), the band-limited noise that Lagae et al. build on.
+//!
+//! A *tile* is an `n×n` (2D) or `n×n×n` (3D) array of coefficients made from Gaussian values by
+//! removing what half resolution can represent (`N = R − R↓↑`); it is evaluated as a periodic
+//! quadratic B-spline surface. One octave of noise ("a band") is `N(p)`, with its energy in
+//! `[1/4, 1/2]` cycles per coefficient.
+//!
+//! Departures from the original, all deliberate:
+//! - Random values come from the counter-based hash in [`crate::rng`] (seedable, order-free,
+//!   reproducible in a shader), not from a sequential generator.
+//! - The "odd offset" of the even/odd variance fix is made odd, as the construction intends
+//!   (the original code's `offset&1==0` test never fires, a C precedence slip).
+//! - Each tile is normalised to zero mean and *unit* variance of the evaluated B-spline field
+//!   over one period, computed exactly from the coefficients. So `σ²_N = 1` holds for our own
+//!   band by construction instead of the paper's approximate 0.265, and a band weight is the
+//!   standard deviation that band contributes. [`TileStats::raw_variance`] keeps the value before
+//!   normalisation for comparison with the paper.
+//!
+//! The evaluation functions at the bottom ([`bspline_weights`], [`noise2`], [`noise3`],
+//! [`band_fade`]) are the per-pixel code: each has a WGSL twin of the same name in `shaders/`.
+
+use crate::rng;
+
+/// Side of the 2D tile (Cook & DeRose and Lagae use 128).
+pub const TILE_2D: usize = 128;
+/// Side of the 3D tile used for solid textures (64³ coefficients, 1 MiB as `f32`).
+pub const TILE_3D: usize = 64;
+
+/// Analysis filter `a_j` for `j = −16..−1`; `a_j = a_{−1−j}` gives `j = 0..15`.
+const A_COEFFS_NEG: [f64; 16] = [
+    0.000334, -0.001528, 0.000410, 0.003545, -0.000938, -0.008233, 0.002172, 0.019120, -0.005040,
+    -0.044412, 0.011655, 0.103311, -0.025936, -0.243780, 0.033979, 0.655340,
+];
+/// Refinement filter `p_{−2..1}`.
+const P_COEFFS: [f64; 4] = [0.25, 0.75, 0.75, 0.25];
+
+fn a_coeff(j: i64) -> f64 {
+    // j in −16..=15
+    if j < 0 {
+        A_COEFFS_NEG[(j + 16) as usize]
+    } else {
+        A_COEFFS_NEG[(15 - j) as usize]
+    }
+}
+
+/// What tile generation measured, for reports and tests.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TileStats {
+    /// Variance of the evaluated band before normalisation (Lagae quote ≈ 0.265 for theirs).
+    pub raw_variance: f64,
+    /// Mean of the coefficients before it was removed.
+    pub raw_mean: f64,
+}
+
+/// A wavelet-noise tile: `n^dims` coefficients, x fastest.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tile {
+    /// Number of dimensions, 2 or 3.
+    pub dims: usize,
+    /// Side length (even).
+    pub n: usize,
+    /// Coefficients, index `x + n·y (+ n²·z)`.
+    pub data: Vec<f32>,
+    /// Measurements taken while generating.
+    pub stats: TileStats,
+}
+
+impl Tile {
+    /// The 2D tile of `seed`.
+    pub fn new_2d(seed: u32) -> Self {
+        Self::generate(seed, 2, TILE_2D, rng::stream::TILE_2D)
+    }
+
+    /// The 3D tile of `seed`.
+    pub fn new_3d(seed: u32) -> Self {
+        Self::generate(seed, 3, TILE_3D, rng::stream::TILE_3D)
+    }
+
+    /// Cook & DeRose's construction, then normalisation (see the module docs).
+    pub fn generate(seed: u32, dims: usize, n: usize, stream: u32) -> Self {
+        assert!(dims == 2 || dims == 3, "tiles are 2D or 3D");
+        assert!(
+            n >= 4 && n % 2 == 0,
+            "tile side must be even and at least 4"
+        );
+        let total = n.pow(dims as u32);
+        let r: Vec<f64> = (0..total)
+            .map(|i| rng::gaussian(seed, stream, i as u32))
+            .collect();
+
+        // R↓↑: down- then up-sample along every axis in turn (separable).
+        let mut low = r.clone();
+        let mut line = vec![0.0; n];
+        let mut half = vec![0.0; n / 2];
+        for axis in 0..dims {
+            for_each_line(n, dims, axis, |start, stride| {
+                for i in 0..n {
+                    line[i] = low[start + i * stride];
+                }
+                downsample(&line, &mut half);
+                upsample(&half, &mut line);
+                for i in 0..n {
+                    low[start + i * stride] = line[i];
+                }
+            });
+        }
+        let band: Vec<f64> = r.iter().zip(&low).map(|(a, b)| a - b).collect();
+
+        // Even/odd variance fix: add a copy shifted by an odd offset along every axis.
+        let mut offset = n / 2;
+        if offset % 2 == 0 {
+            offset += 1;
+        }
+        let mut data: Vec<f64> = (0..total)
+            .map(|i| band[i] + band[shift_index(i, n, dims, offset)])
+            .collect();
+
+        let raw_mean = data.iter().sum::<f64>() / total as f64;
+        data.iter_mut().for_each(|v| *v -= raw_mean);
+        let raw_variance = evaluated_variance(&data, n, dims);
+        let inv_sd = if raw_variance > 0.0 {
+            1.0 / raw_variance.sqrt()
+        } else {
+            0.0
+        };
+        Tile {
+            dims,
+            n,
+            data: data.iter().map(|v| (v * inv_sd) as f32).collect(),
+            stats: TileStats {
+                raw_variance,
+                raw_mean,
+            },
+        }
+    }
+}
+
+/// Calls `f(start, stride)` for every line of the tile along `axis`.
+fn for_each_line(n: usize, dims: usize, axis: usize, mut f: impl FnMut(usize, usize)) {
+    let stride = n.pow(axis as u32);
+    let total = n.pow(dims as u32);
+    for start in 0..total {
+        // `start` is a line start when its coordinate along `axis` is 0.
+        if (start / stride) % n == 0 {
+            f(start, stride);
+        }
+    }
+}
+
+fn shift_index(i: usize, n: usize, dims: usize, offset: usize) -> usize {
+    let mut out = 0;
+    let mut rest = i;
+    let mut mul = 1;
+    for _ in 0..dims {
+        let c = rest % n;
+        rest /= n;
+        out += ((c + offset) % n) * mul;
+        mul *= n;
+    }
+    out
+}
+
+/// `r↓[i] = Σ_j a_j · r[(2i + j) mod n]`, `j = −16..15`.
+fn downsample(from: &[f64], to: &mut [f64]) {
+    let n = from.len() as i64;
+    for (i, out) in to.iter_mut().enumerate() {
+        let mut s = 0.0;
+        for j in -16..16i64 {
+            s += a_coeff(j) * from[(2 * i as i64 + j).rem_euclid(n) as usize];
+        }
+        *out = s;
+    }
+}
+
+/// `r↑[i] = Σ_{k=⌊i/2⌋}^{⌊i/2⌋+1} p_{i−2k} · r↓[k mod n/2]`.
+fn upsample(from: &[f64], to: &mut [f64]) {
+    let half = from.len() as i64;
+    for (i, out) in to.iter_mut().enumerate() {
+        let i = i as i64;
+        let mut s = 0.0;
+        for k in (i / 2)..=(i / 2 + 1) {
+            s += P_COEFFS[(i - 2 * k + 2) as usize] * from[k.rem_euclid(half) as usize];
+        }
+        *out = s;
+    }
+}
+
+/// Exact variance over one period of the periodic quadratic B-spline field with zero-mean
+/// coefficients `c`: `mean(c · (A ⊛ c))`, where `A` is the B-spline's autocorrelation at integer
+/// lags (the quintic B-spline at −2..2: 1, 26, 66, 26, 1 over 120), applied along every axis.
+fn evaluated_variance(c: &[f64], n: usize, dims: usize) -> f64 {
+    const AUTO: [f64; 5] = [
+        1.0 / 120.0,
+        26.0 / 120.0,
+        66.0 / 120.0,
+        26.0 / 120.0,
+        1.0 / 120.0,
+    ];
+    let mut f = c.to_vec();
+    let mut line = vec![0.0; n];
+    for axis in 0..dims {
+        for_each_line(n, dims, axis, |start, stride| {
+            for i in 0..n {
+                let mut s = 0.0;
+                for (d, a) in AUTO.iter().enumerate() {
+                    let k = (i + n + d - 2) % n;
+                    s += a * f[start + k * stride];
+                }
+                line[i] = s;
+            }
+            for i in 0..n {
+                f[start + i * stride] = line[i];
+            }
+        });
+    }
+    c.iter().zip(&f).map(|(a, b)| a * b).sum::<f64>() / c.len() as f64
+}
+
+// ---------------------------------------------------------------------------------------------
+// Per-pixel evaluation: twins of the WGSL functions of the same names in `shaders/noise.wgsl`.
+// Keep them in f32 and in the same operation order as the shader.
+// ---------------------------------------------------------------------------------------------
+
+/// Quadratic B-spline weights along one axis at `p ∈ [0, n)`: the index of the middle
+/// coefficient and the weights of coefficients `mid − 1`, `mid`, `mid + 1`.
+#[inline]
+pub fn bspline_weights(p: f32) -> (i32, [f32; 3]) {
+    let mid = (p - 0.5).ceil();
+    let t = mid - (p - 0.5);
+    let w0 = 0.5 * t * t;
+    let w2 = 0.5 * (1.0 - t) * (1.0 - t);
+    (mid as i32, [w0, 1.0 - w0 - w2, w2])
+}
+
+#[inline]
+fn wrap_coord(p: f32, n: f32) -> f32 {
+    p - n * (p / n).floor()
+}
+
+#[inline]
+fn wrap_index(i: i32, n: i32) -> usize {
+    i.rem_euclid(n) as usize
+}
+
+/// One 2D wavelet-noise band at `p` (coefficient units), periodic with period `n`.
+#[inline]
+pub fn noise2(tile: &[f32], n: usize, p: [f32; 2]) -> f32 {
+    let nf = n as f32;
+    let ni = n as i32;
+    let (mx, wx) = bspline_weights(wrap_coord(p[0], nf));
+    let (my, wy) = bspline_weights(wrap_coord(p[1], nf));
+    let mut sum = 0.0f32;
+    for dy in 0..3 {
+        let row = wrap_index(my + dy as i32 - 1, ni) * n;
+        let mut line = 0.0f32;
+        for dx in 0..3 {
+            line += wx[dx] * tile[row + wrap_index(mx + dx as i32 - 1, ni)];
+        }
+        sum += wy[dy] * line;
+    }
+    sum
+}
+
+/// One 3D wavelet-noise band at `p` (coefficient units), periodic with period `n`.
+#[inline]
+pub fn noise3(tile: &[f32], n: usize, p: [f32; 3]) -> f32 {
+    let nf = n as f32;
+    let ni = n as i32;
+    let (mx, wx) = bspline_weights(wrap_coord(p[0], nf));
+    let (my, wy) = bspline_weights(wrap_coord(p[1], nf));
+    let (mz, wz) = bspline_weights(wrap_coord(p[2], nf));
+    let mut sum = 0.0f32;
+    for dz in 0..3 {
+        let slab = wrap_index(mz + dz as i32 - 1, ni) * n * n;
+        let mut plane = 0.0f32;
+        for dy in 0..3 {
+            let row = slab + wrap_index(my + dy as i32 - 1, ni) * n;
+            let mut line = 0.0f32;
+            for dx in 0..3 {
+                line += wx[dx] * tile[row + wrap_index(mx + dx as i32 - 1, ni)];
+            }
+            plane += wy[dy] * line;
+        }
+        sum += wz[dz] * plane;
+    }
+    sum
+}
+
+/// Band clamping (Norton et al. 1982): the factor of band `j` (energy up to `2^−(j+1)` cycles per
+/// texel) when one pixel covers `2^log2_footprint` texels. 1 while the band is below the pixel
+/// Nyquist rate, fading linearly (in octaves) to 0 when it lies an octave above it.
+#[inline]
+pub fn band_fade(band: u32, log2_footprint: f32) -> f32 {
+    (1.0 - (log2_footprint - band as f32)).clamp(0.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn filters_are_as_documented() {
+        // The analysis filter has unit DC gain and is symmetric about −1/2; the refinement
+        // filter has gain 2 (it interpolates to twice the samples).
+        let sum: f64 = (-16..16).map(a_coeff).sum();
+        assert!((sum - 1.0).abs() < 1e-5, "{sum}");
+        assert_eq!(P_COEFFS.iter().sum::<f64>(), 2.0);
+        for j in 0..16 {
+            assert_eq!(a_coeff(j), a_coeff(-1 - j));
+        }
+    }
+
+    #[test]
+    fn tile_is_normalised_and_deterministic() {
+        let t = Tile::new_2d(3);
+        assert_eq!(t.data.len(), TILE_2D * TILE_2D);
+        assert_eq!(t, Tile::new_2d(3));
+        assert_ne!(t.data, Tile::new_2d(4).data);
+        let c: Vec<f64> = t.data.iter().map(|&v| v as f64).collect();
+        let var = evaluated_variance(&c, TILE_2D, 2);
+        assert!((var - 1.0).abs() < 1e-5, "{var}");
+        assert!(t.stats.raw_variance > 0.1 && t.stats.raw_variance < 1.0);
+    }
+
+    #[test]
+    fn sampled_variance_matches_exact_formula() {
+        let t = Tile::new_2d(9);
+        let n = TILE_2D;
+        let steps = 4;
+        let (mut s1, mut s2, mut count) = (0.0f64, 0.0f64, 0.0f64);
+        for y in 0..n * steps {
+            for x in 0..n * steps {
+                let p = [
+                    (x as f32 + 0.37) / steps as f32,
+                    (y as f32 + 0.61) / steps as f32,
+                ];
+                let v = noise2(&t.data, n, p) as f64;
+                s1 += v;
+                s2 += v * v;
+                count += 1.0;
+            }
+        }
+        let mean = s1 / count;
+        let var = s2 / count - mean * mean;
+        assert!(mean.abs() < 1e-3, "{mean}");
+        assert!((var - 1.0).abs() < 0.01, "{var}");
+    }
+
+    #[test]
+    fn bspline_weights_partition_unity_and_c1() {
+        for i in 0..1000 {
+            let p = i as f32 * 0.013;
+            let (_, w) = bspline_weights(p);
+            assert!((w.iter().sum::<f32>() - 1.0).abs() < 1e-6);
+            assert!(w.iter().all(|&v| v >= 0.0));
+        }
+        // C¹ continuity of the noise across coefficient boundaries (at half-integers, where the
+        // middle index changes): value and one-sided slopes agree.
+        let t = Tile::new_2d(1);
+        for k in 0..20 {
+            let x = k as f32 + 0.5;
+            let e = 1e-3f32;
+            let y = 7.3;
+            let l = noise2(&t.data, TILE_2D, [x - e, y]);
+            let c = noise2(&t.data, TILE_2D, [x, y]);
+            let r = noise2(&t.data, TILE_2D, [x + e, y]);
+            assert!((l - c).abs() < 0.05 && (r - c).abs() < 0.05);
+            let l2 = noise2(&t.data, TILE_2D, [x - 2.0 * e, y]);
+            let r2 = noise2(&t.data, TILE_2D, [x + 2.0 * e, y]);
+            let slope_l = (l - l2) / e;
+            let slope_r = (r2 - r) / e;
+            assert!(
+                (slope_l - slope_r).abs() < 0.05 * (1.0 + slope_l.abs()),
+                "{slope_l} {slope_r}"
+            );
+        }
+    }
+
+    #[test]
+    fn noise_is_periodic() {
+        let t = Tile::new_2d(2);
+        let n = TILE_2D as f32;
+        for i in 0..50 {
+            let p = [i as f32 * 1.37, i as f32 * 0.71];
+            let a = noise2(&t.data, TILE_2D, p);
+            let b = noise2(&t.data, TILE_2D, [p[0] + n, p[1] - n]);
+            assert!((a - b).abs() < 1e-4);
+        }
+        let t3 = Tile::new_3d(2);
+        let n3 = TILE_3D as f32;
+        for i in 0..50 {
+            let p = [i as f32 * 1.37, i as f32 * 0.71, i as f32 * 0.3];
+            let a = noise3(&t3.data, TILE_3D, p);
+            let b = noise3(&t3.data, TILE_3D, [p[0] + n3, p[1], p[2] - n3]);
+            assert!((a - b).abs() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn band_fade_ramps() {
+        assert_eq!(band_fade(0, 0.0), 1.0);
+        assert_eq!(band_fade(0, 1.0), 0.0);
+        assert!((band_fade(0, 0.5) - 0.5).abs() < 1e-6);
+        assert_eq!(band_fade(3, 2.0), 1.0);
+        assert_eq!(band_fade(3, -5.0), 1.0);
+    }
+}

@@ -1,0 +1,296 @@
+//! The parameters type: the one description of a texture that flows photo → analysis → GPU
+//! uniforms → export. Versioned JSON (`"format": "proctex/1"`); import validates every field and
+//! names the bad one.
+//!
+//! Texture space: a *texel* is one pixel of the analysed image. Band `j` of the noise model
+//! (index 0 is the finest) holds frequencies up to `2^−(j+1)` cycles per texel, i.e. noise
+//! `N(u · 2^−j + o_j)`. World coordinates map to texels through [`Transform`]: `u = R(−θ)·x / s`.
+//! Models other than noise will be added as further [`Model`] variants; the colour, transform,
+//! seed and dimension blocks are shared by all of them.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+
+/// The format tag of this version.
+pub const FORMAT: &str = "proctex/1";
+/// Most bands a noise model may have (a 8192² analysis has 12).
+pub const MAX_BANDS: usize = 12;
+/// Most knots of a histogram spline (K ≤ 32).
+pub const MAX_KNOTS: usize = 33;
+
+/// A procedural texture, completely.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Params {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Seed of the noise tiles and band offsets.
+    pub seed: u32,
+    /// `true`: a solid texture (3D noise), `false`: a plane texture (2D noise).
+    pub solid: bool,
+    /// World ↔ texel mapping.
+    pub transform: Transform,
+    /// Mean colour and decorrelating rotation.
+    pub colour: Colour,
+    /// The texture model in the decorrelated colour space.
+    pub model: Model,
+    /// Where the parameters came from (informational; not used to render).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<Source>,
+}
+
+/// World ↔ texel mapping.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Transform {
+    /// World units per texel (analysis sets it to photo pixels per analysed pixel).
+    pub scale: f32,
+    /// Rotation of the texture, degrees counter-clockwise.
+    pub rotation_deg: f32,
+}
+
+/// Colour: `rgb = mean + Σ_k v_k · basis[k]`, where `v_k` are the decorrelated channels.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Colour {
+    /// Mean RGB, display-encoded, in `[0, 1]`.
+    pub mean: [f32; 3],
+    /// Rows are the principal axes (unit, orthogonal, determinant +1).
+    pub basis: [[f32; 3]; 3],
+}
+
+/// The texture model.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Model {
+    /// Multiresolution wavelet noise per decorrelated channel (Lagae et al. 2009).
+    Noise(NoiseModel),
+}
+
+/// Lagae's model: for each decorrelated channel `c`, `M_c(u) = Σ_j w_cj N(u·2^−j + o_cj)`,
+/// optionally mapped through the channel's inverse CDF.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoiseModel {
+    /// Band weights per channel, finest band first; all three the same length.
+    pub weights: [Vec<f32>; 3],
+    /// Histogram matching.
+    pub histogram: Histogram,
+}
+
+/// Histogram matching: inverse CDF knots per channel at probabilities `Φ(−2.5 + 5j/K)` (see
+/// [`crate::histogram`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Histogram {
+    /// Whether synthesis applies it (the knots are kept either way, for toggling).
+    pub enabled: bool,
+    /// `K + 1` non-decreasing knots per channel, in decorrelated channel units.
+    pub knots: [Vec<f32>; 3],
+}
+
+/// Provenance of an analysis.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Source {
+    /// Photo width (after orientation).
+    pub width: u32,
+    /// Photo height (after orientation).
+    pub height: u32,
+    /// Crop in photo pixels, `[x, y, w, h]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crop: Option<[u32; 4]>,
+    /// Size of the analysed image.
+    pub analysis_width: u32,
+    /// Size of the analysed image.
+    pub analysis_height: u32,
+    /// Which band-weight estimator produced the weights.
+    pub estimator: String,
+}
+
+impl Params {
+    /// The noise model, if that is the model.
+    pub fn noise(&self) -> Option<&NoiseModel> {
+        match &self.model {
+            Model::Noise(n) => Some(n),
+        }
+    }
+
+    /// Pretty JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("params always serialise")
+    }
+
+    /// Parses and validates a params document.
+    pub fn from_json(text: &str) -> Result<Params> {
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+            Error::params(
+                "(document)",
+                format!("not valid JSON: {e} (NaN and Infinity are not JSON numbers)"),
+            )
+        })?;
+        match value.get("format") {
+            Some(serde_json::Value::String(f)) if f == FORMAT => {}
+            Some(serde_json::Value::String(f)) => {
+                return Err(Error::params(
+                    "format",
+                    format!("unsupported format `{f}`; this version reads `{FORMAT}`"),
+                ));
+            }
+            Some(_) => return Err(Error::params("format", "must be a string")),
+            None => {
+                return Err(Error::params(
+                    "format",
+                    format!("missing; a params document starts with \"format\": \"{FORMAT}\""),
+                ));
+            }
+        }
+        let params: Params = serde_path_to_error::deserialize(value).map_err(|e| {
+            let path = e.path().to_string();
+            Error::params(path, e.into_inner().to_string())
+        })?;
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// Checks every field: lengths, finiteness, ranges, and the invariants the renderer needs.
+    pub fn validate(&self) -> Result<()> {
+        if self.format != FORMAT {
+            return Err(Error::params(
+                "format",
+                format!("unsupported format `{}`", self.format),
+            ));
+        }
+        check_range("transform.scale", self.transform.scale, 1e-4, 1e6)?;
+        check_range(
+            "transform.rotation_deg",
+            self.transform.rotation_deg,
+            -3600.0,
+            3600.0,
+        )?;
+        for c in 0..3 {
+            check_range(&format!("colour.mean[{c}]"), self.colour.mean[c], 0.0, 1.0)?;
+            for k in 0..3 {
+                check_range(
+                    &format!("colour.basis[{c}][{k}]"),
+                    self.colour.basis[c][k],
+                    -1.0001,
+                    1.0001,
+                )?;
+            }
+        }
+        let b = self.colour.basis.map(|r| r.map(|v| v as f64));
+        for i in 0..3 {
+            for j in 0..3 {
+                let d = crate::colour::dot(b[i], b[j]);
+                let want = if i == j { 1.0 } else { 0.0 };
+                if (d - want).abs() > 1e-3 {
+                    return Err(Error::params(
+                        "colour.basis",
+                        "rows must be orthonormal (a rotation matrix)",
+                    ));
+                }
+            }
+        }
+        if crate::colour::det3(b) <= 0.0 {
+            return Err(Error::params(
+                "colour.basis",
+                "must be a proper rotation (determinant +1), not a reflection",
+            ));
+        }
+        match &self.model {
+            Model::Noise(n) => n.validate("model"),
+        }?;
+        if let Some(s) = &self.source {
+            if s.width == 0 || s.height == 0 || s.analysis_width == 0 || s.analysis_height == 0 {
+                return Err(Error::params("source", "sizes must be positive"));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl NoiseModel {
+    /// Number of bands.
+    pub fn bands(&self) -> usize {
+        self.weights[0].len()
+    }
+
+    /// Model standard deviation per channel, `σ_M = sqrt(Σ w²)` (Lagae eq. 2 with `σ²_N = 1`).
+    pub fn sigma(&self) -> [f32; 3] {
+        [0, 1, 2].map(|c| {
+            self.weights[c]
+                .iter()
+                .map(|&w| (w as f64).powi(2))
+                .sum::<f64>()
+                .sqrt() as f32
+        })
+    }
+
+    fn validate(&self, at: &str) -> Result<()> {
+        let nb = self.weights[0].len();
+        for c in 0..3 {
+            let w = &self.weights[c];
+            let field = format!("{at}.weights[{c}]");
+            if w.is_empty() || w.len() > MAX_BANDS {
+                return Err(Error::params(
+                    field,
+                    format!("must have 1 to {MAX_BANDS} bands, has {}", w.len()),
+                ));
+            }
+            if w.len() != nb {
+                return Err(Error::params(
+                    field,
+                    format!(
+                        "has {} bands but channel 0 has {nb}; all channels need the same count",
+                        w.len()
+                    ),
+                ));
+            }
+            for (j, &v) in w.iter().enumerate() {
+                check_range(&format!("{at}.weights[{c}][{j}]"), v, 0.0, 4.0)?;
+            }
+        }
+        let nk = self.histogram.knots[0].len();
+        for c in 0..3 {
+            let k = &self.histogram.knots[c];
+            let field = format!("{at}.histogram.knots[{c}]");
+            if k.len() < 2 || k.len() > MAX_KNOTS {
+                return Err(Error::params(
+                    field,
+                    format!("must have 2 to {MAX_KNOTS} knots, has {}", k.len()),
+                ));
+            }
+            if k.len() != nk {
+                return Err(Error::params(
+                    field,
+                    format!("has {} knots but channel 0 has {nk}", k.len()),
+                ));
+            }
+            for (j, &v) in k.iter().enumerate() {
+                check_range(&format!("{at}.histogram.knots[{c}][{j}]"), v, -2.0, 2.0)?;
+            }
+            if k.windows(2).any(|w| w[1] < w[0]) {
+                return Err(Error::params(
+                    field,
+                    "knots must be non-decreasing (an inverse CDF)",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn check_range(field: &str, v: f32, lo: f32, hi: f32) -> Result<()> {
+    if !v.is_finite() {
+        return Err(Error::params(field, format!("must be finite, got {v}")));
+    }
+    if v < lo || v > hi {
+        return Err(Error::params(
+            field,
+            format!("{v} is outside the allowed range [{lo}, {hi}]"),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,281 @@
+//! The CPU reference renderer: the truth that the CLI, the tests, the exports and the GPU
+//! comparison share.
+//!
+//! [`Prepared`] is [`Params`] flattened into fixed-size arrays exactly as the GPU uniform block
+//! will hold them (derived data only: tangents, σ, offsets, cos/sin). It is not a second
+//! parameters type: it is computed from `Params` and never edited or stored. [`shade`] is the
+//! per-pixel function; its WGSL twin is `shade` in `shaders/`.
+//!
+//! Synthesis (Lagae §7): per decorrelated channel evaluate `Σ_j w_j·fade_j·N(u·2^−j + o_j)`,
+//! map through the inverse CDF spline (see [`crate::histogram`]) when the histogram is on, rotate back to
+//! RGB and add the mean.
+
+use crate::histogram::{fc_tangents, knot_coordinate, spline_eval};
+use crate::noise::{TILE_2D, TILE_3D, Tile, band_fade, noise2, noise3};
+use crate::params::{MAX_BANDS, MAX_KNOTS, Model, Params};
+use crate::rng;
+
+/// Params flattened for per-pixel evaluation (mirrors the GPU uniform block).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Prepared {
+    /// Number of bands in use.
+    pub bands: u32,
+    /// Number of histogram knots in use.
+    pub knots: u32,
+    /// Solid (3D) texture.
+    pub solid: bool,
+    /// Histogram matching on.
+    pub histogram: bool,
+    /// Mean RGB.
+    pub mean: [f32; 3],
+    /// Rows: principal axes.
+    pub basis: [[f32; 3]; 3],
+    /// Per channel band weights, zero past `bands`.
+    pub weights: [[f32; MAX_BANDS]; 3],
+    /// Per channel band offsets in coefficient units (x, y, z).
+    pub offsets: [[[f32; 3]; MAX_BANDS]; 3],
+    /// Per channel knot values.
+    pub knot_values: [[f32; MAX_KNOTS]; 3],
+    /// Per channel Fritsch–Carlson tangents.
+    pub tangents: [[f32; MAX_KNOTS]; 3],
+    /// Per channel `σ_M` (Gaussian standard deviation of the unclamped model).
+    pub sigma: [f32; 3],
+    /// `1 / scale`.
+    pub inv_scale: f32,
+    /// cos and sin of the rotation.
+    pub rot: [f32; 2],
+}
+
+impl Prepared {
+    /// Flattens validated params.
+    pub fn new(params: &Params) -> Prepared {
+        let Model::Noise(model) = &params.model;
+        let tile_n = if params.solid { TILE_3D } else { TILE_2D } as f32;
+        let mut p = Prepared {
+            bands: model.bands() as u32,
+            knots: model.histogram.knots[0].len() as u32,
+            solid: params.solid,
+            histogram: model.histogram.enabled,
+            mean: params.colour.mean,
+            basis: params.colour.basis,
+            weights: [[0.0; MAX_BANDS]; 3],
+            offsets: [[[0.0; 3]; MAX_BANDS]; 3],
+            knot_values: [[0.0; MAX_KNOTS]; 3],
+            tangents: [[0.0; MAX_KNOTS]; 3],
+            sigma: model.sigma(),
+            inv_scale: 1.0 / params.transform.scale,
+            rot: {
+                let r = params.transform.rotation_deg.to_radians();
+                [r.cos(), r.sin()]
+            },
+        };
+        for c in 0..3 {
+            for (j, &w) in model.weights[c].iter().enumerate().take(MAX_BANDS) {
+                p.weights[c][j] = w;
+            }
+            for j in 0..MAX_BANDS {
+                p.offsets[c][j] = band_offset(params.seed, c, j).map(|f| f * tile_n);
+            }
+            let k = &model.histogram.knots[c];
+            let t = fc_tangents(k);
+            p.knot_values[c][..k.len()].copy_from_slice(k);
+            p.tangents[c][..k.len()].copy_from_slice(&t);
+        }
+        p
+    }
+
+    /// Texel coordinates of a world point: `u = R(−θ)·x / s`.
+    #[inline]
+    pub fn texel(&self, world: [f32; 3]) -> [f32; 3] {
+        let [c, s] = self.rot;
+        [
+            (c * world[0] + s * world[1]) * self.inv_scale,
+            (-s * world[0] + c * world[1]) * self.inv_scale,
+            world[2] * self.inv_scale,
+        ]
+    }
+}
+
+/// The random offset `o_cj` of channel `c`, band `j`, as fractions of the tile side.
+pub fn band_offset(seed: u32, channel: usize, band: usize) -> [f32; 3] {
+    let base = ((channel * MAX_BANDS + band) * 3) as u32;
+    [0, 1, 2].map(|a| rng::uniform(seed, rng::stream::BAND_OFFSETS, base + a) as f32)
+}
+
+/// The noise tile a params set renders with.
+pub fn tile_for(params: &Params) -> Tile {
+    if params.solid {
+        Tile::new_3d(params.seed)
+    } else {
+        Tile::new_2d(params.seed)
+    }
+}
+
+/// The multiresolution noise of one channel at texel `u` (Lagae eq. 1 with band clamping).
+#[inline]
+pub fn channel_noise(prep: &Prepared, tile: &Tile, c: usize, u: [f32; 3], log2_fp: f32) -> f32 {
+    let mut sum = 0.0f32;
+    for j in 0..prep.bands as usize {
+        let w = prep.weights[c][j] * band_fade(j as u32, log2_fp);
+        if w == 0.0 {
+            continue;
+        }
+        let f = 1.0 / (1u32 << j) as f32;
+        let o = prep.offsets[c][j];
+        let v = if prep.solid {
+            noise3(
+                &tile.data,
+                tile.n,
+                [u[0] * f + o[0], u[1] * f + o[1], u[2] * f + o[2]],
+            )
+        } else {
+            noise2(&tile.data, tile.n, [u[0] * f + o[0], u[1] * f + o[1]])
+        };
+        sum += w * v;
+    }
+    sum
+}
+
+/// The colour at world point `world` for a pixel footprint of `2^log2_fp` texels.
+#[inline]
+pub fn shade(prep: &Prepared, tile: &Tile, world: [f32; 3], log2_fp: f32) -> [f32; 3] {
+    let u = prep.texel(world);
+    let mut rgb = prep.mean;
+    let k = prep.knots as usize;
+    for c in 0..3 {
+        let g = channel_noise(prep, tile, c, u, log2_fp);
+        let v = if prep.histogram && prep.sigma[c] > 0.0 {
+            spline_eval(
+                &prep.knot_values[c][..k],
+                &prep.tangents[c][..k],
+                knot_coordinate(g, prep.sigma[c]),
+            )
+        } else if prep.histogram {
+            // A channel without variation: its (flat) distribution's median.
+            prep.knot_values[c][k / 2]
+        } else {
+            g
+        };
+        for i in 0..3 {
+            rgb[i] += v * prep.basis[c][i];
+        }
+    }
+    rgb
+}
+
+/// Which part of world space an image shows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    /// World coordinates of the top-left corner of pixel (0, 0).
+    pub origin: [f32; 2],
+    /// World units per pixel.
+    pub pixel_size: f32,
+    /// World z of the slice (solid textures).
+    pub z: f32,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        View {
+            origin: [0.0, 0.0],
+            pixel_size: 1.0,
+            z: 0.0,
+        }
+    }
+}
+
+/// A rendered RGB image, `f32` per channel, unclamped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    /// Width.
+    pub width: u32,
+    /// Height.
+    pub height: u32,
+    /// Row-major pixels.
+    pub pixels: Vec<[f32; 3]>,
+}
+
+impl Image {
+    /// 8-bit RGB, clamped and rounded.
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        self.pixels
+            .iter()
+            .flat_map(|p| p.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
+            .collect()
+    }
+
+    /// 16-bit RGB, clamped and rounded.
+    pub fn to_rgb16(&self) -> Vec<u16> {
+        self.pixels
+            .iter()
+            .flat_map(|p| p.map(|v| (v.clamp(0.0, 1.0) * 65535.0).round() as u16))
+            .collect()
+    }
+
+    /// As a photo (clamped to `[0, 1]`), e.g. to analyse or evaluate a rendering.
+    pub fn to_photo(&self) -> crate::input::Photo {
+        crate::input::Photo {
+            width: self.width,
+            height: self.height,
+            pixels: self
+                .pixels
+                .iter()
+                .map(|p| p.map(|v| v.clamp(0.0, 1.0)))
+                .collect(),
+        }
+    }
+}
+
+/// Renders `params` into a `width × height` image of `view`. Plane textures ignore `view.z`;
+/// solid textures show the slice at `view.z`.
+pub fn render(params: &Params, width: u32, height: u32, view: &View) -> Image {
+    let prep = Prepared::new(params);
+    let tile = tile_for(params);
+    render_prepared(&prep, &tile, width, height, view)
+}
+
+/// [`render`] with the prepared block and tile supplied (to reuse them across renders).
+pub fn render_prepared(
+    prep: &Prepared,
+    tile: &Tile,
+    width: u32,
+    height: u32,
+    view: &View,
+) -> Image {
+    let log2_fp = (view.pixel_size * prep.inv_scale).log2();
+    let row = |y: u32, out: &mut [[f32; 3]]| {
+        let wy = view.origin[1] + (y as f32 + 0.5) * view.pixel_size;
+        for (x, px) in out.iter_mut().enumerate() {
+            let wx = view.origin[0] + (x as f32 + 0.5) * view.pixel_size;
+            *px = shade(prep, tile, [wx, wy, view.z], log2_fp);
+        }
+    };
+    let mut pixels = vec![[0.0f32; 3]; width as usize * height as usize];
+    if width > 0 {
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            use rayon::prelude::*;
+            pixels
+                .par_chunks_mut(width as usize)
+                .enumerate()
+                .for_each(|(y, out)| row(y as u32, out));
+        }
+        #[cfg(target_arch = "wasm32")]
+        for (y, out) in pixels.chunks_mut(width as usize).enumerate() {
+            row(y as u32, out);
+        }
+    }
+    Image {
+        width,
+        height,
+        pixels,
+    }
+}
+
+/// Period of the texture in texels along x and y (unrotated): the coarsest band repeats every
+/// `n·2^(bands−1)` texels and every finer band divides that.
+pub fn period_texels(params: &Params) -> u64 {
+    let Model::Noise(m) = &params.model;
+    let n = if params.solid { TILE_3D } else { TILE_2D } as u64;
+    n << (m.bands() - 1)
+}
