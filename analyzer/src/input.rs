@@ -95,6 +95,11 @@ impl Photo {
                     "not a recognised image format (PNG, JPEG, WebP, GIF, BMP or TIFF)".into(),
                 ));
             }
+            if reader.format() == Some(image::ImageFormat::Jpeg) && !jpeg_is_complete(bytes) {
+                return Err(Error::Decode(
+                    "the JPEG file is truncated (its last scan has no end-of-image marker)".into(),
+                ));
+            }
             let mut limits = Limits::default();
             limits.max_image_width = Some(MAX_SIDE);
             limits.max_image_height = Some(MAX_SIDE);
@@ -240,6 +245,17 @@ impl Photo {
             height: h,
             pixels,
         }
+    }
+}
+
+/// Whether the last scan (SOS, `FF DA`) of a JPEG is followed by an end-of-image marker
+/// (`FF D9`). The JPEG decoder is lenient and fills a cut-off file with grey, which would be
+/// analysed as if it were texture; a browser shows such a file half grey too.
+fn jpeg_is_complete(bytes: &[u8]) -> bool {
+    let last = |m: u8| bytes.windows(2).rposition(|w| w == [0xff, m]);
+    match (last(0xda), last(0xd9)) {
+        (Some(sos), Some(eoi)) => eoi > sos,
+        _ => false,
     }
 }
 

@@ -80,7 +80,7 @@ impl Tile {
     pub fn generate(seed: u32, dims: usize, n: usize, stream: u32) -> Self {
         assert!(dims == 2 || dims == 3, "tiles are 2D or 3D");
         assert!(
-            n >= 4 && n % 2 == 0,
+            n >= 4 && n.is_multiple_of(2),
             "tile side must be even and at least 4"
         );
         let total = n.pow(dims as u32);
@@ -108,7 +108,7 @@ impl Tile {
 
         // Even/odd variance fix: add a copy shifted by an odd offset along every axis.
         let mut offset = n / 2;
-        if offset % 2 == 0 {
+        if offset.is_multiple_of(2) {
             offset += 1;
         }
         let mut data: Vec<f64> = (0..total)
@@ -141,7 +141,7 @@ fn for_each_line(n: usize, dims: usize, axis: usize, mut f: impl FnMut(usize, us
     let total = n.pow(dims as u32);
     for start in 0..total {
         // `start` is a line start when its coordinate along `axis` is 0.
-        if (start / stride) % n == 0 {
+        if (start / stride).is_multiple_of(n) {
             f(start, stride);
         }
     }

@@ -202,10 +202,10 @@ impl Params {
         match &self.model {
             Model::Noise(n) => n.validate("model"),
         }?;
-        if let Some(s) = &self.source {
-            if s.width == 0 || s.height == 0 || s.analysis_width == 0 || s.analysis_height == 0 {
-                return Err(Error::params("source", "sizes must be positive"));
-            }
+        if let Some(s) = &self.source
+            && (s.width == 0 || s.height == 0 || s.analysis_width == 0 || s.analysis_height == 0)
+        {
+            return Err(Error::params("source", "sizes must be positive"));
         }
         Ok(())
     }

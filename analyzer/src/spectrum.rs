@@ -23,7 +23,6 @@ use std::cell::RefCell;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex32;
 
-use crate::noise::{Tile, noise2};
 use crate::params::MAX_BANDS;
 
 /// How band weights are obtained from band powers.
@@ -207,23 +206,25 @@ pub fn band_powers(img: &[f32], w: usize, h: usize, nb: usize, periodic: bool) -
 }
 
 /// Seeds averaged by [`measure_leakage`] for [`LEAKAGE_512`].
-pub const LEAKAGE_SEEDS: [u32; 6] = [1, 2, 3, 4, 5, 6];
+pub const LEAKAGE_SEEDS: [u32; 24] = [
+    1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24,
+];
 
-/// The measured leakage matrix at 512² (8 bands): `LEAKAGE_512[j][i]` is the power in octave `j`
+/// The measured leakage matrix at 512² (8 bands, averaged over 24 seeds): `LEAKAGE_512[j][i]` is the power in octave `j`
 /// of a unit-variance noise band `i`. Printed by `cargo run --example leakage`; the test
 /// `leakage_table_is_current` re-measures it. Column 0 (the finest band) meets the Nyquist limit;
 /// the last columns meet the coarse end, where an octave holds only a few FFT bins (band 7:
 /// |k| ≤ 2, band 6: |k| ∈ {3, 4}); columns 1–2 are the scale-free interior.
 #[rustfmt::skip]
 pub const LEAKAGE_512: [[f64; 8]; 8] = [
-    [0.996431, 0.069121, 0.000645, 0.000046, 0.000007, 0.000001, 0.000000, 0.000000],
-    [0.100422, 0.825660, 0.069734, 0.000641, 0.000051, 0.000007, 0.000002, 0.000000],
-    [0.000777, 0.098639, 0.827561, 0.066176, 0.000730, 0.000068, 0.000013, 0.000002],
-    [0.000815, 0.000509, 0.098448, 0.805439, 0.060801, 0.000911, 0.000116, 0.000016],
-    [0.000843, 0.000481, 0.000365, 0.125241, 0.742469, 0.047986, 0.001304, 0.000143],
-    [0.000843, 0.000462, 0.000308, 0.005305, 0.163927, 0.677617, 0.034880, 0.001448],
-    [0.000949, 0.000403, 0.000273, 0.003202, 0.008569, 0.278942, 0.457580, 0.013835],
-    [0.004687, 0.001277, 0.000773, 0.008112, 0.011870, 0.041560, 0.372641, 0.995805],
+    [1.241137, 0.076890, 0.000838, 0.000066, 0.000011, 0.000003, 0.000001, 0.000000],
+    [0.104286, 0.841009, 0.069399, 0.000651, 0.000066, 0.000011, 0.000003, 0.000001],
+    [0.000907, 0.099450, 0.827657, 0.066420, 0.000749, 0.000090, 0.000019, 0.000005],
+    [0.000850, 0.000828, 0.098854, 0.796859, 0.059444, 0.000905, 0.000152, 0.000033],
+    [0.000846, 0.000773, 0.000523, 0.125009, 0.746727, 0.047914, 0.001273, 0.000237],
+    [0.000877, 0.000760, 0.000480, 0.004339, 0.157148, 0.655167, 0.036025, 0.001540],
+    [0.001000, 0.000662, 0.000459, 0.002589, 0.009097, 0.238503, 0.501984, 0.015788],
+    [0.005467, 0.002259, 0.001173, 0.005678, 0.012891, 0.038469, 0.427031, 0.727097],
 ];
 
 /// The leakage matrix for `nb` bands, from [`LEAKAGE_512`]. For power-of-two square images a
@@ -284,24 +285,45 @@ pub fn nonneg_solve(l: &[Vec<f64>], p: &[f64]) -> Vec<f64> {
     v
 }
 
-/// Measures the leakage matrix of our own noise bands: renders each band alone (unit weight) on
-/// a `size × size` grid exactly as the CPU renderer samples it (pixel centres, one texel per
-/// pixel), and averages its band powers over `seeds`. `L[j][i]`.
+/// Measures the leakage matrix of our own noise bands: renders each band alone (unit weight,
+/// channel 0) on a `size × size` grid with the CPU renderer's own per-pixel code at one texel
+/// per pixel, and averages its band powers over `seeds`. Returns `L[j][i]`.
 pub fn measure_leakage(size: usize, seeds: &[u32]) -> Vec<Vec<f64>> {
+    use crate::params::{Colour, FORMAT, Histogram, Model, NoiseModel, Params, Transform};
+    use crate::render::{Prepared, channel_noise, tile_for};
     let nb = num_bands(size, size);
     let mut l = vec![vec![0.0; nb]; nb];
     for &seed in seeds {
-        let tile = Tile::new_2d(seed);
         for i in 0..nb {
-            let f = 0.5f32.powi(i as i32);
-            let o = [
-                crate::rng::uniform(seed, 99, i as u32) as f32 * 128.0,
-                crate::rng::uniform(seed, 98, i as u32) as f32 * 128.0,
-            ];
+            let mut unit = vec![0.0f32; nb];
+            unit[i] = 1.0;
+            let params = Params {
+                format: FORMAT.into(),
+                seed,
+                solid: false,
+                transform: Transform {
+                    scale: 1.0,
+                    rotation_deg: 0.0,
+                },
+                colour: Colour {
+                    mean: [0.5; 3],
+                    basis: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                },
+                model: Model::Noise(NoiseModel {
+                    weights: [unit, vec![0.0; nb], vec![0.0; nb]],
+                    histogram: Histogram {
+                        enabled: false,
+                        knots: [vec![0.0, 1.0], vec![0.0, 1.0], vec![0.0, 1.0]],
+                    },
+                }),
+                source: None,
+            };
+            let prep = Prepared::new(&params);
+            let tile = tile_for(&params);
             let img: Vec<f32> = (0..size * size)
                 .map(|k| {
                     let (x, y) = ((k % size) as f32 + 0.5, (k / size) as f32 + 0.5);
-                    noise2(&tile.data, tile.n, [x * f + o[0], y * f + o[1]])
+                    channel_noise(&prep, &tile, 0, prep.texel([x, y, 0.0]), 0.0)
                 })
                 .collect();
             let p = band_powers(&img, size, size, nb, true);
@@ -391,13 +413,17 @@ mod tests {
     #[test]
     fn leakage_transfers_to_other_sizes() {
         // The matrix built for 256² (7 bands) from the 512² measurement matches a direct
-        // measurement at 256² where the bands hold enough bins to be stable.
+        // measurement at 256² to 0.02 for the fine and interior bands. Towards the coarse end
+        // it is an approximation (band 4 at 256² has 16×16 coefficients in view, the two
+        // coarsest 8×8 and 4×4, whose split between octaves is uncertain by several percent
+        // even over 24 seeds).
         let direct = measure_leakage(256, &LEAKAGE_SEEDS);
         let built = leakage_matrix(7);
         for j in 0..7 {
             for i in 0..7 {
+                let tol = [0.02, 0.02, 0.02, 0.02, 0.04, 0.1, 0.1][i];
                 assert!(
-                    (direct[j][i] - built[j][i]).abs() < 0.03,
+                    (direct[j][i] - built[j][i]).abs() < tol,
                     "[{j}][{i}] {} vs {}",
                     direct[j][i],
                     built[j][i]

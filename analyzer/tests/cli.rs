@@ -1,0 +1,169 @@
+//! The `proctex` binary: usage, outputs and exit codes.
+
+use std::process::{Command, Output};
+
+fn proctex(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_proctex"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn sample(name: &str) -> String {
+    format!("{}/../www/samples/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn bad(name: &str) -> String {
+    format!("{}/tests/bad/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn tmp(name: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("proctex-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name).to_string_lossy().into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn help_everywhere() {
+    for args in [
+        vec!["help"],
+        vec!["--help"],
+        vec!["analyze", "--help"],
+        vec!["render", "--help"],
+        vec!["synth", "--help"],
+        vec!["evaluate", "--help"],
+        vec!["fidelity", "--help"],
+    ] {
+        let o = proctex(&args);
+        assert!(o.status.success(), "{args:?}");
+        assert!(
+            String::from_utf8_lossy(&o.stdout).contains("proctex"),
+            "{args:?}"
+        );
+    }
+    let o = proctex(&[]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn analyze_render_synth_evaluate() {
+    let params = tmp("rock.json");
+    let o = proctex(&[
+        "analyze",
+        &sample("stk_rock_mountain_512.png"),
+        "-o",
+        &params,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&params).unwrap();
+    assert!(text.contains(r#""format": "proctex/1""#));
+
+    // --json prints exactly the params document.
+    let o = proctex(&["analyze", &sample("stk_rock_mountain_512.png"), "--json"]);
+    assert!(o.status.success());
+    let printed = proctex::params::Params::from_json(&String::from_utf8_lossy(&o.stdout)).unwrap();
+    assert_eq!(printed, proctex::params::Params::from_json(&text).unwrap());
+
+    let png = tmp("rock.png");
+    let o = proctex(&[
+        "render", &params, "-o", &png, "--width", "200", "--height", "120",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&png).unwrap();
+    assert_eq!((img.width(), img.height()), (200, 120));
+
+    let slice = tmp("slice.png");
+    let o = proctex(&[
+        "render",
+        &params,
+        "-o",
+        &slice,
+        "--size",
+        "64",
+        "--solid-z",
+        "3.5",
+        "--depth",
+        "16",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        image::open(&slice).unwrap().color(),
+        image::ColorType::Rgb16
+    );
+
+    let syn = tmp("syn.png");
+    let o = proctex(&[
+        "synth",
+        &sample("stk_wood_planks1_256.png"),
+        "-o",
+        &syn,
+        "--crop",
+        "10,20,150,90",
+        "--seed",
+        "4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&syn).unwrap();
+    assert_eq!((img.width(), img.height()), (150, 90));
+
+    let o = proctex(&["evaluate", &syn, &sample("stk_wood_planks1_256.png")]);
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("spectrum_db") && out.contains("colour"),
+        "{out}"
+    );
+}
+
+#[test]
+fn bad_input_exits_1_with_a_message() {
+    for f in [
+        "truncated.png",
+        "truncated.jpg",
+        "empty.png",
+        "text.png",
+        "1x1.png",
+        "31x31.png",
+        "huge_declared.png",
+    ] {
+        let o = proctex(&["analyze", &bad(f)]);
+        assert_eq!(o.status.code(), Some(1), "{f}");
+        let e = stderr(&o);
+        assert!(
+            e.starts_with("proctex: ") && !e.contains("panicked"),
+            "{f}: {e}"
+        );
+    }
+    let o = proctex(&["analyze", "/nonexistent/photo.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("/nonexistent/photo.png"));
+
+    let hostile = tmp("hostile.json");
+    std::fs::write(&hostile, r#"{"format": "proctex/1", "seed": 1, "solid": false, "transform": {"scale": 1e308, "rotation_deg": 0}}"#).unwrap();
+    let o = proctex(&["render", &hostile, "-o", &tmp("x.png")]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("bad params"), "{}", stderr(&o));
+}
+
+#[test]
+fn bad_usage_exits_2() {
+    for args in [
+        vec!["frobnicate"],
+        vec!["analyze"],
+        vec!["analyze", "x.png", "--size", "300"],
+        vec!["analyze", "x.png", "--size"],
+        vec!["analyze", "x.png", "--wat"],
+        vec!["analyze", "x.png", "--estimator", "magic"],
+        vec!["render", "p.json"],
+        vec!["synth", "x.png"],
+        vec!["evaluate", "a.png"],
+    ] {
+        let o = proctex(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).starts_with("proctex: "), "{args:?}");
+    }
+}
