@@ -10,12 +10,14 @@
 
 use crate::colour::pca;
 use crate::error::{Error, Result};
-use crate::histogram::gaussianize;
+use rustfft::num_complex::Complex32;
+
+use crate::histogram::{ChannelStats, RANK_BINS, RankMap};
 use crate::input::{Crop, Photo};
 use crate::params::{
     Colour, FORMAT, Histogram, MAX_KNOTS, Model, NoiseModel, Params, Source, Transform,
 };
-use crate::spectrum::{Estimator, band_powers_pair, estimate_weights, num_bands};
+use crate::spectrum::{Estimator, band_powers_packed, estimate_weights, num_bands};
 
 /// Analysis options (the CLI flags of `proctex analyze`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,13 +96,18 @@ pub fn analyze_bytes(bytes: &[u8], opts: &Options) -> Result<Analysis> {
 /// Crops, reduces and analyses a decoded photo.
 pub fn analyze_photo(photo: &Photo, opts: &Options) -> Result<Analysis> {
     opts.validate()?;
+    let cropped;
     let region = match opts.crop {
-        Some(c) => photo.crop(c)?,
-        None => photo.clone(),
+        Some(c) => {
+            cropped = photo.crop(c)?;
+            &cropped
+        }
+        None => photo,
     };
     region.check_min_size()?;
-    let reduced = region.reduce_to(opts.size);
-    let mut analysis = analyze_prepared(&reduced, opts);
+    let reduced = region.reduced(opts.size);
+    let reduced: &Photo = reduced.as_ref().unwrap_or(region);
+    let mut analysis = analyze_prepared(reduced, opts);
     // One texel is one analysed pixel; in world units (photo pixels) that is this many.
     analysis.params.transform.scale = region.width as f32 / reduced.width as f32;
     analysis.params.source = Some(Source {
@@ -122,40 +129,100 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
     let mean = p.mean.map(|m| m as f32);
     let basis = p.basis.map(|r| r.map(|v| v as f32));
 
-    // Decorrelated channels (computed with the f32 basis actually stored, so that synthesis
-    // inverts exactly what analysis measured).
-    let mut channels = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
-    for (i, px) in photo.pixels.iter().enumerate() {
-        let d = [px[0] - mean[0], px[1] - mean[1], px[2] - mean[2]];
-        for c in 0..3 {
-            channels[c][i] = basis[c][0] * d[0] + basis[c][1] * d[1] + basis[c][2] * d[2];
+    // Decorrelated channels, computed with the f32 basis actually stored (so that synthesis
+    // inverts exactly what analysis measured). They are recomputed from the pixels in each pass
+    // (nine multiply-adds) rather than stored: pass 1 takes their range, pass 2 their rank bins
+    // (u16), pass 3 packs the Gaussianized values for the FFTs.
+    let project = |px: &[f32; 3], c: usize| -> f32 {
+        let b = basis[c];
+        b[0] * (px[0] - mean[0]) + b[1] * (px[1] - mean[1]) + b[2] * (px[2] - mean[2])
+    };
+    // Range of each channel: four independent lanes of min/max so the chains do not serialise.
+    let mut lo = [[f32::INFINITY; 3]; 4];
+    let mut hi = [[f32::NEG_INFINITY; 3]; 4];
+    let mut quads = photo.pixels.chunks_exact(4);
+    for quad in &mut quads {
+        for (l, px) in quad.iter().enumerate() {
+            for c in 0..3 {
+                let v = project(px, c);
+                lo[l][c] = if v < lo[l][c] { v } else { lo[l][c] };
+                hi[l][c] = if v > hi[l][c] { v } else { hi[l][c] };
+            }
         }
     }
-    let channel_variance = [0, 1, 2].map(|c| {
-        let m = channels[c].iter().map(|&v| v as f64).sum::<f64>() / n as f64;
-        channels[c]
-            .iter()
-            .map(|&v| (v as f64 - m).powi(2))
-            .sum::<f64>()
-            / n as f64
-    });
-
-    // Knots are kept even with the histogram off, so that the UI can toggle it later.
-    let mut knots: [Vec<f32>; 3] = Default::default();
-    let mut signal: [Vec<f32>; 3] = Default::default();
-    for c in 0..3 {
-        let g = gaussianize(&channels[c], opts.knots);
-        knots[c] = g.knots;
-        signal[c] = if opts.histogram {
-            g.values
-        } else {
-            std::mem::take(&mut channels[c])
-        };
+    for px in quads.remainder() {
+        for c in 0..3 {
+            let v = project(px, c);
+            lo[0][c] = lo[0][c].min(v);
+            hi[0][c] = hi[0][c].max(v);
+        }
     }
+    // Mean and variance of each channel are known exactly from the covariance: the mean is 0
+    // and the variance `bᵀ C b` for the stored (f32) axis b.
+    let stats = [0, 1, 2].map(|c| {
+        let b = basis[c].map(|v| v as f64);
+        let cb = [0, 1, 2].map(|i| (0..3).map(|k| p.covariance[i][k] * b[k]).sum::<f64>());
+        let var: f64 = (0..3).map(|i| b[i] * cb[i]).sum();
+        ChannelStats {
+            lo: lo.iter().map(|l| l[c]).fold(f32::INFINITY, f32::min),
+            hi: hi.iter().map(|h| h[c]).fold(f32::NEG_INFINITY, f32::max),
+            n,
+            mean: 0.0,
+            sigma: var.max(0.0).sqrt(),
+        }
+    });
+    let channel_variance = stats.map(|s| s.sigma * s.sigma);
+
+    // Rank bins of all three channels in one pass, then maps and knots (knots are kept even
+    // with the histogram off, so that the UI can toggle it later).
+    let binning = stats.map(|s| RankMap::binning(&s));
+    let mut counts = [
+        vec![0u32; RANK_BINS],
+        vec![0u32; RANK_BINS],
+        vec![0u32; RANK_BINS],
+    ];
+    let mut bins = vec![[0u16; 3]; n];
+    for (px, b) in photo.pixels.iter().zip(bins.iter_mut()) {
+        for c in 0..3 {
+            let k = RankMap::bin_of(project(px, c), binning[c]);
+            counts[c][k as usize] += 1;
+            b[c] = k;
+        }
+    }
+    let mut knots: [Vec<f32>; 3] = Default::default();
+    let mut maps: [Option<RankMap>; 3] = Default::default();
+    for c in 0..3 {
+        let (map, k) = RankMap::from_counts(&counts[c], &stats[c], opts.knots);
+        knots[c] = k;
+        maps[c] = opts.histogram.then_some(map);
+    }
+    // Channels 0 and 1 as real and imaginary part of one complex image, channel 2 alone.
+    let (pair, single): (Vec<Complex32>, Vec<Complex32>) = match &maps {
+        [Some(m0), Some(m1), Some(m2)] => bins
+            .iter()
+            .map(|b| {
+                (
+                    Complex32::new(m0.z(b[0]), m1.z(b[1])),
+                    Complex32::new(m2.z(b[2]), 0.0),
+                )
+            })
+            .unzip(),
+        _ => photo
+            .pixels
+            .iter()
+            .map(|px| {
+                (
+                    Complex32::new(project(px, 0), project(px, 1)),
+                    Complex32::new(project(px, 2), 0.0),
+                )
+            })
+            .unzip(),
+    };
+    drop(bins);
 
     let nb = num_bands(w, h);
-    let [p0, p1] = band_powers_pair(&signal[0], Some(&signal[1]), w, h, nb, opts.periodic);
-    let [p2, _] = band_powers_pair(&signal[2], None, w, h, nb, opts.periodic);
+    let [p0, p1] = band_powers_packed(pair, w, h, nb, opts.periodic);
+    let [p2, _] = band_powers_packed(single, w, h, nb, opts.periodic);
     let band_powers = [p0, p1, p2];
     let weights = [0, 1, 2].map(|c| estimate_weights(&band_powers[c], opts.estimator));
 

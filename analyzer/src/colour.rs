@@ -14,37 +14,42 @@ pub struct Pca {
     pub basis: [[f64; 3]; 3],
     /// Variance along each axis.
     pub variance: [f64; 3],
+    /// The RGB covariance matrix.
+    pub covariance: [[f64; 3]; 3],
 }
 
-/// Mean and covariance of `pixels`.
+/// Mean and covariance of `pixels`, in one pass of f64 sums of the values shifted by the first
+/// pixel (the "shifted data" algorithm, which avoids the cancellation of raw moments).
 pub fn mean_covariance(pixels: &[[f32; 3]]) -> ([f64; 3], [[f64; 3]; 3]) {
     let n = pixels.len().max(1) as f64;
-    let mut mean = [0.0f64; 3];
+    let k = pixels
+        .first()
+        .copied()
+        .unwrap_or([0.0; 3])
+        .map(|v| v as f64);
+    let mut s = [0.0f64; 3];
+    let mut ss = [0.0f64; 6]; // rr, rg, rb, gg, gb, bb
     for p in pixels {
-        for c in 0..3 {
-            mean[c] += p[c] as f64;
-        }
+        let d = [p[0] as f64 - k[0], p[1] as f64 - k[1], p[2] as f64 - k[2]];
+        s[0] += d[0];
+        s[1] += d[1];
+        s[2] += d[2];
+        ss[0] += d[0] * d[0];
+        ss[1] += d[0] * d[1];
+        ss[2] += d[0] * d[2];
+        ss[3] += d[1] * d[1];
+        ss[4] += d[1] * d[2];
+        ss[5] += d[2] * d[2];
     }
-    mean.iter_mut().for_each(|m| *m /= n);
+    let shifted_mean = s.map(|v| v / n);
+    let idx = [[0, 1, 2], [1, 3, 4], [2, 4, 5]];
     let mut cov = [[0.0f64; 3]; 3];
-    for p in pixels {
-        let d = [
-            p[0] as f64 - mean[0],
-            p[1] as f64 - mean[1],
-            p[2] as f64 - mean[2],
-        ];
-        for i in 0..3 {
-            for j in i..3 {
-                cov[i][j] += d[i] * d[j];
-            }
-        }
-    }
     for i in 0..3 {
-        for j in i..3 {
-            cov[i][j] /= n;
-            cov[j][i] = cov[i][j];
+        for j in 0..3 {
+            cov[i][j] = ss[idx[i][j]] / n - shifted_mean[i] * shifted_mean[j];
         }
     }
+    let mean = [0, 1, 2].map(|c| shifted_mean[c] + k[c]);
     (mean, cov)
 }
 
@@ -75,6 +80,7 @@ pub fn pca(pixels: &[[f32; 3]]) -> Pca {
         mean,
         basis: axes,
         variance: values.map(|v| v.max(0.0)),
+        covariance: cov,
     }
 }
 

@@ -199,14 +199,19 @@ impl Photo {
     /// kept (each output pixel is the exact coverage-weighted mean of the source pixels under it).
     /// Returns the photo unchanged when it is small enough.
     pub fn reduce_to(&self, max_side: u32) -> Photo {
+        self.reduced(max_side).unwrap_or_else(|| self.clone())
+    }
+
+    /// [`Photo::reduce_to`] without the copy: `None` when no reduction is needed.
+    pub fn reduced(&self, max_side: u32) -> Option<Photo> {
         let long = self.width.max(self.height);
         if long <= max_side {
-            return self.clone();
+            return None;
         }
         let s = max_side as f64 / long as f64;
         let w = ((self.width as f64 * s).round() as u32).max(1);
         let h = ((self.height as f64 * s).round() as u32).max(1);
-        self.resample_box(w, h)
+        Some(self.resample_box(w, h))
     }
 
     /// Box (area-coverage) resampling to `w × h`, separable.

@@ -110,34 +110,68 @@ pub fn fft2_real(img: &[f32], w: usize, h: usize) -> Vec<Complex32> {
     fft2(img.iter().map(|&v| Complex32::new(v, 0.0)).collect(), w, h)
 }
 
-/// Removes the spectrum of the smooth component (Moisan's periodic + smooth decomposition) from
-/// `spec` (transposed layout), given the spatial image `u` it came from.
-fn subtract_smooth_component(u: &[Complex32], w: usize, h: usize, spec: &mut [Complex32]) {
-    // Border differences: a(x) = u(x, h−1) − u(x, 0), b(y) = u(w−1, y) − u(0, y).
-    let mut a: Vec<Complex32> = (0..w).map(|x| u[(h - 1) * w + x] - u[x]).collect();
-    let mut b: Vec<Complex32> = (0..h).map(|y| u[y * w + w - 1] - u[y * w]).collect();
-    fft_rows(&mut a, w);
-    fft_rows(&mut b, h);
-    let tw = |n: usize| -> Vec<(f64, f64)> {
-        (0..n)
-            .map(|k| {
-                let t = std::f64::consts::TAU * k as f64 / n as f64;
-                (t.cos(), t.sin())
-            })
-            .collect()
-    };
-    let (cq, cr) = (tw(w), tw(h));
-    for q in 0..w {
-        for r in 0..h {
-            if q == 0 && r == 0 {
-                continue;
+/// Border differences of a spatial image, all Moisan's decomposition needs from it:
+/// `a(x) = u(x, h−1) − u(x, 0)` and `b(y) = u(w−1, y) − u(0, y)`.
+fn border_differences(u: &[Complex32], w: usize, h: usize) -> (Vec<Complex32>, Vec<Complex32>) {
+    let a = (0..w).map(|x| u[(h - 1) * w + x] - u[x]).collect();
+    let b = (0..h).map(|y| u[y * w + w - 1] - u[y * w]).collect();
+    (a, b)
+}
+
+/// The spectrum of the smooth component (Moisan's periodic + smooth decomposition), from the
+/// border differences of the image: `ŝ(q, r) = v̂(q, r) / λ(q, r)` with
+/// `v̂ = Â(q)·(1 − e^{2πi r/h}) + B̂(r)·(1 − e^{2πi q/w})` and
+/// `λ = 2cos(2πq/w) + 2cos(2πr/h) − 4`; `ŝ(0, 0) = 0`.
+struct SmoothComponent {
+    a: Vec<Complex32>,
+    b: Vec<Complex32>,
+    eq: Vec<Complex32>,
+    cq: Vec<f32>,
+    er: Vec<Complex32>,
+    cr: Vec<f32>,
+}
+
+impl SmoothComponent {
+    fn new((mut a, mut b): (Vec<Complex32>, Vec<Complex32>), w: usize, h: usize) -> Self {
+        fft_rows(&mut a, w);
+        fft_rows(&mut b, h);
+        // Per axis: 1 − e^{2πik/n} and 2cos(2πk/n) − 2.
+        let factors = |n: usize| -> (Vec<Complex32>, Vec<f32>) {
+            (0..n)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / n as f64;
+                    (
+                        Complex32::new((1.0 - t.cos()) as f32, (-t.sin()) as f32),
+                        (2.0 * t.cos() - 2.0) as f32,
+                    )
+                })
+                .unzip()
+        };
+        let (eq, cq) = factors(w);
+        let (er, cr) = factors(h);
+        SmoothComponent {
+            a,
+            b,
+            eq,
+            cq,
+            er,
+            cr,
+        }
+    }
+
+    /// Subtracts `ŝ` from a spectrum in transposed layout. Written as plain `f32` arithmetic
+    /// over contiguous rows so that it vectorises; `λ` is 0 only at DC, where `ŝ = 0`.
+    fn subtract_from(&self, spec: &mut [Complex32], h: usize) {
+        for (q, row) in spec.chunks_exact_mut(h).enumerate() {
+            let (aq, eq, cq) = (self.a[q], self.eq[q], self.cq[q]);
+            for (((z, er), br), cr) in row.iter_mut().zip(&self.er).zip(&self.b).zip(&self.cr) {
+                let lambda = cq + cr;
+                let inv = if lambda == 0.0 { 0.0 } else { 1.0 / lambda };
+                let re = (aq.re * er.re - aq.im * er.im) + (br.re * eq.re - br.im * eq.im);
+                let im = (aq.re * er.im + aq.im * er.re) + (br.re * eq.im + br.im * eq.re);
+                z.re -= re * inv;
+                z.im -= im * inv;
             }
-            // v̂ = Â(q)·(1 − e^{2πi r/h}) + B̂(r)·(1 − e^{2πi q/w});  ŝ = v̂ / λ.
-            let er = Complex32::new((1.0 - cr[r].0) as f32, (-cr[r].1) as f32);
-            let eq = Complex32::new((1.0 - cq[q].0) as f32, (-cq[q].1) as f32);
-            let v = a[q] * er + b[r] * eq;
-            let lambda = (2.0 * cq[q].0 + 2.0 * cr[r].0 - 4.0) as f32;
-            spec[q * h + r] -= v / lambda;
         }
     }
 }
@@ -145,9 +179,14 @@ fn subtract_smooth_component(u: &[Complex32], w: usize, h: usize, spec: &mut [Co
 /// Spectrum (transposed layout) of a real image, optionally with the smooth component removed.
 pub fn spectrum_real(img: &[f32], w: usize, h: usize, periodic: bool) -> Vec<Complex32> {
     let data: Vec<Complex32> = img.iter().map(|&v| Complex32::new(v, 0.0)).collect();
-    let mut spec = fft2(data.clone(), w, h);
-    if periodic {
-        subtract_smooth_component(&data, w, h, &mut spec);
+    spectrum(data, w, h, periodic)
+}
+
+fn spectrum(data: Vec<Complex32>, w: usize, h: usize, periodic: bool) -> Vec<Complex32> {
+    let smooth = periodic.then(|| border_differences(&data, w, h));
+    let mut spec = fft2(data, w, h);
+    if let Some(borders) = smooth {
+        SmoothComponent::new(borders, w, h).subtract_from(&mut spec, h);
     }
     spec
 }
@@ -171,25 +210,55 @@ pub fn band_powers_pair(
             .collect(),
         None => first.iter().map(|&a| Complex32::new(a, 0.0)).collect(),
     };
-    let mut spec = fft2(packed.clone(), w, h);
-    if periodic {
-        subtract_smooth_component(&packed, w, h, &mut spec);
-    }
+    band_powers_packed(packed, w, h, nb, periodic)
+}
+
+/// [`band_powers_pair`] on an already packed `w × h` complex image (real part: first image,
+/// imaginary part: second).
+///
+/// The two real spectra are `F₁(k) = (Z(k) + Z̄(−k))/2` and `F₂(k) = (Z(k) − Z̄(−k))/2i`, so each
+/// conjugate pair of bins is visited once (and counted twice).
+pub fn band_powers_packed(
+    packed: Vec<Complex32>,
+    w: usize,
+    h: usize,
+    nb: usize,
+    periodic: bool,
+) -> [Vec<f64>; 2] {
+    let spec = spectrum(packed, w, h, periodic);
     let bx = axis_bands(w, nb);
     let by = axis_bands(h, nb);
     let mut p = [vec![0.0f64; nb], vec![0.0f64; nb]];
-    for q in 0..w {
-        let qm = (w - q) % w;
+    for q in 0..=w / 2 {
+        let qm = if q == 0 { 0 } else { w - q };
+        let self_row = qm == q;
+        let (row, mirror) = (&spec[q * h..(q + 1) * h], &spec[qm * h..(qm + 1) * h]);
+        let bq = bx[q];
+        // Accumulate a row in f32 per band, then add to the f64 totals.
+        let mut acc = [[0.0f32; MAX_BANDS]; 2];
         for r in 0..h {
-            let band = bx[q].min(by[r]);
+            let rm = if r == 0 { 0 } else { h - r };
+            // Each unordered pair {(q, r), (−q, −r)} once, with its multiplicity.
+            let mult = if !self_row || r < rm {
+                2.0
+            } else if r == rm {
+                1.0
+            } else {
+                continue;
+            };
+            let band = bq.min(by[r]);
             if band == usize::MAX {
                 continue;
             }
-            let rm = (h - r) % h;
-            let z = spec[q * h + r];
-            let zm = spec[qm * h + rm].conj();
-            p[0][band] += (z + zm).norm_sqr() as f64;
-            p[1][band] += (z - zm).norm_sqr() as f64;
+            let z = row[r];
+            let zm = mirror[rm].conj();
+            acc[0][band] += mult * (z + zm).norm_sqr();
+            acc[1][band] += mult * (z - zm).norm_sqr();
+        }
+        for c in 0..2 {
+            for j in 0..nb {
+                p[c][j] += acc[c][j] as f64;
+            }
         }
     }
     let norm = 4.0 * (w as f64 * h as f64).powi(2);
