@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Runs every test of the project, exactly as CI does (.ci/run calls this script):
+# formatting, lints (warnings are errors), all cargo tests, then the speed benchmark (prints
+# ratios measured in one run; it asserts nothing about time).
+# Installs what it needs: a Rust toolchain with rustfmt and clippy.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+step() { printf '\n== %s\n' "$*"; }
+
+step "toolchain"
+if ! command -v cargo >/dev/null 2>&1; then
+    if [ -x "$HOME/.cargo/bin/cargo" ]; then
+        export PATH="$HOME/.cargo/bin:$PATH"
+    else
+        echo "installing Rust (rustup)"
+        curl --proto '=https' --tlsv1.2 -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal
+        export PATH="$HOME/.cargo/bin:$PATH"
+    fi
+fi
+for component in rustfmt clippy; do
+    if ! cargo "${component/rustfmt/fmt}" --version >/dev/null 2>&1; then
+        rustup component add "$component"
+    fi
+done
+cargo --version
+
+step "cargo fmt --check"
+cargo fmt --all --check
+
+step "cargo clippy --all-targets -- -D warnings"
+cargo clippy --workspace --release --all-targets -- -D warnings
+
+step "cargo test"
+cargo test --workspace --release
+
+step "benchmark (ratios within one run; not a pass/fail test)"
+cargo bench -p proctex-analyzer --bench analysis
