@@ -32,7 +32,18 @@ step "cargo clippy --all-targets -- -D warnings"
 cargo clippy --workspace --release --all-targets -- -D warnings
 
 step "cargo test"
-cargo test --workspace --release
+log=$(mktemp)
+cargo test --workspace --release 2>&1 | tee "$log"
+read -r passed failed < <(awk '/^test result:/ {
+    for (i = 1; i < NF; i++) {
+        if ($(i + 1) ~ /^passed/) p += $i
+        if ($(i + 1) ~ /^failed/) f += $i
+    }
+} END { print p + 0, f + 0 }' "$log")
+rm -f "$log"
 
 step "benchmark (ratios within one run; not a pass/fail test)"
 cargo bench -p proctex-analyzer --bench analysis
+
+step "summary"
+echo "cargo tests: ${passed} passed, ${failed} failed"
