@@ -11,10 +11,12 @@
 //! another patch, relative to the distance between the two patches themselves.
 
 use crate::analyze::{Options, analyze_photo};
+use crate::colour::pca;
 use crate::error::Result;
 use crate::input::{Crop, Photo};
 use crate::render::{View, render};
-use crate::spectrum::spectrum_real;
+use crate::rng;
+use crate::spectrum::{fft2_real, ifft2, spectrum_real};
 
 /// Distances between two textures.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -133,6 +135,66 @@ pub fn distances(a: &Photo, b: &Photo) -> Distances {
     }
 }
 
+/// The best a stationary Gaussian model with histogram matching can do with `photo`: each
+/// decorrelated channel keeps its own power spectrum exactly (of its periodic component, so no
+/// border cross) with independent random phases, and is then rank-matched to the channel's
+/// exact distribution. Any model of Lagae's family (any band structure, any spectrum shape)
+/// is at best this; the fidelity table reports its ratio as the floor.
+pub fn random_phase(photo: &Photo, seed: u32) -> Photo {
+    let (w, h) = (photo.width as usize, photo.height as usize);
+    let n = w * h;
+    let p = pca(&photo.pixels);
+    let mut out = vec![[0.0f32; 3]; n];
+    for c in 0..3 {
+        let axis = p.basis[c];
+        let chan: Vec<f32> = photo
+            .pixels
+            .iter()
+            .map(|px| {
+                (0..3)
+                    .map(|k| axis[k] * (px[k] as f64 - p.mean[k]))
+                    .sum::<f64>() as f32
+            })
+            .collect();
+        let spec = spectrum_real(&chan, w, h, true);
+        // Unit-modulus Hermitian phases: the normalised spectrum of real white noise.
+        let noise: Vec<f32> = (0..n)
+            .map(|i| rng::gaussian(seed, 0x7068_6173 + c as u32, i as u32) as f32)
+            .collect();
+        let phases = fft2_real(&noise, w, h);
+        let shuffled: Vec<_> = spec
+            .iter()
+            .zip(&phases)
+            .map(|(s, ph)| {
+                let m = ph.norm();
+                if m > 0.0 { s * (ph / m) } else { *s }
+            })
+            .collect();
+        let field = ifft2(shuffled, w, h);
+        // Exact rank matching to the channel's own values.
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&a, &b| field[a].re.total_cmp(&field[b].re));
+        let mut sorted = chan.clone();
+        sorted.sort_unstable_by(f32::total_cmp);
+        for (rank, &i) in order.iter().enumerate() {
+            let v = sorted[rank] as f64;
+            for k in 0..3 {
+                out[i][k] += (v * axis[k]) as f32;
+            }
+        }
+    }
+    for px in &mut out {
+        for k in 0..3 {
+            px[k] = (px[k] + p.mean[k] as f32).clamp(0.0, 1.0);
+        }
+    }
+    Photo {
+        width: photo.width,
+        height: photo.height,
+        pixels: out,
+    }
+}
+
 /// Result of the fidelity protocol on one photo.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Fidelity {
@@ -144,6 +206,13 @@ pub struct Fidelity {
     pub spectrum_ratio: f64,
     /// `synthesis.colour / halves.colour`.
     pub colour_ratio: f64,
+    /// Mean distance between the random-phase floor ([`random_phase`]) of one patch and the
+    /// other patch.
+    pub floor: Distances,
+    /// `floor.spectrum_db / halves.spectrum_db`: the best ratio a Gaussian model can reach.
+    pub floor_spectrum_ratio: f64,
+    /// `floor.colour / halves.colour`.
+    pub floor_colour_ratio: f64,
 }
 
 /// Analyses and renders a texture of exactly the photo's pixel size (what `proctex synth`
@@ -181,6 +250,7 @@ pub fn fidelity(photo: &Photo, opts: &Options, seeds: &[u32]) -> Result<Fidelity
     ];
     let (mut hs, mut hc) = (0.0, 0.0);
     let (mut s, mut c, mut n) = (0.0, 0.0, 0.0);
+    let (mut fs, mut fc) = (0.0, 0.0);
     for (a, b) in &pairs {
         let d = distances(a, b);
         hs += d.spectrum_db / pairs.len() as f64;
@@ -192,6 +262,9 @@ pub fn fidelity(photo: &Photo, opts: &Options, seeds: &[u32]) -> Result<Fidelity
                 let d = distances(&syn, other);
                 s += d.spectrum_db;
                 c += d.colour;
+                let f = distances(&random_phase(src, seed), other);
+                fs += f.spectrum_db;
+                fc += f.colour;
                 n += 1.0;
             }
         }
@@ -204,10 +277,17 @@ pub fn fidelity(photo: &Photo, opts: &Options, seeds: &[u32]) -> Result<Fidelity
         spectrum_db: s / n,
         colour: c / n,
     };
+    let floor = Distances {
+        spectrum_db: fs / n,
+        colour: fc / n,
+    };
     Ok(Fidelity {
         halves,
         synthesis,
         spectrum_ratio: synthesis.spectrum_db / halves.spectrum_db.max(1e-9),
         colour_ratio: synthesis.colour / halves.colour.max(1e-9),
+        floor,
+        floor_spectrum_ratio: floor.spectrum_db / halves.spectrum_db.max(1e-9),
+        floor_colour_ratio: floor.colour / halves.colour.max(1e-9),
     })
 }
