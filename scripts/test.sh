@@ -2,11 +2,26 @@
 # Runs every test of the project, exactly as CI does (.ci/run calls this script):
 # formatting, lints (warnings are errors), all cargo tests, then the speed benchmark (prints
 # ratios measured in one run; it asserts nothing about time).
-# Installs what it needs: a Rust toolchain with rustfmt and clippy.
+# Installs what it needs: a Rust toolchain with rustfmt and clippy, and Mesa's software Vulkan
+# driver (lavapipe) for the GPU-vs-CPU test of the shaders.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 step() { printf '\n== %s\n' "$*"; }
+
+# apt-get as root, or through sudo.
+apt_install() {
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "$@"
+}
+
+step "system packages"
+if ! ls /usr/share/vulkan/icd.d/lvp_icd.*.json >/dev/null 2>&1; then
+    echo "installing mesa-vulkan-drivers (software Vulkan for the GPU-vs-CPU test)"
+    apt_install mesa-vulkan-drivers
+fi
 
 step "toolchain"
 if ! command -v cargo >/dev/null 2>&1; then

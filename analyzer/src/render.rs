@@ -84,6 +84,74 @@ impl Prepared {
         p
     }
 
+    /// Size of [`Prepared::uniform_bytes`]: the `Params` struct of `shaders/params.wgsl`.
+    pub const UNIFORM_SIZE: usize = 16 * (7 + MAX_BANDS + 3 * MAX_BANDS + 2 * MAX_KNOTS);
+
+    /// The GPU uniform block, little-endian, laid out as `struct Params` in
+    /// `shaders/params.wgsl` (every field a vec4): mean, basis rows, (1/scale, cos, sin),
+    /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[channel·12 + band],
+    /// knots[k], tangents[k].
+    pub fn uniform_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(Self::UNIFORM_SIZE);
+        let mut f4 = |v: [f32; 4]| {
+            v.iter()
+                .for_each(|x| out.extend_from_slice(&x.to_le_bytes()))
+        };
+        f4([self.mean[0], self.mean[1], self.mean[2], 0.0]);
+        for row in self.basis {
+            f4([row[0], row[1], row[2], 0.0]);
+        }
+        f4([self.inv_scale, self.rot[0], self.rot[1], 0.0]);
+        let counts = [
+            self.bands,
+            self.knots,
+            self.solid as u32,
+            self.histogram as u32,
+        ];
+        let mut tail = Vec::with_capacity(Self::UNIFORM_SIZE);
+        let mut g4 = |v: [f32; 4]| {
+            v.iter()
+                .for_each(|x| tail.extend_from_slice(&x.to_le_bytes()))
+        };
+        g4([self.sigma[0], self.sigma[1], self.sigma[2], 0.0]);
+        for j in 0..MAX_BANDS {
+            g4([
+                self.weights[0][j],
+                self.weights[1][j],
+                self.weights[2][j],
+                0.0,
+            ]);
+        }
+        for c in 0..3 {
+            for j in 0..MAX_BANDS {
+                let o = self.offsets[c][j];
+                g4([o[0], o[1], o[2], 0.0]);
+            }
+        }
+        for k in 0..MAX_KNOTS {
+            g4([
+                self.knot_values[0][k],
+                self.knot_values[1][k],
+                self.knot_values[2][k],
+                0.0,
+            ]);
+        }
+        for k in 0..MAX_KNOTS {
+            g4([
+                self.tangents[0][k],
+                self.tangents[1][k],
+                self.tangents[2][k],
+                0.0,
+            ]);
+        }
+        counts
+            .iter()
+            .for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
+        out.extend_from_slice(&tail);
+        debug_assert_eq!(out.len(), Self::UNIFORM_SIZE);
+        out
+    }
+
     /// Texel coordinates of a world point: `u = R(−θ)·x / s`.
     #[inline]
     pub fn texel(&self, world: [f32; 3]) -> [f32; 3] {

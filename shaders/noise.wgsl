@@ -1,0 +1,70 @@
+// Wavelet noise evaluation and band clamping. Twins: analyzer/src/noise.rs
+// (bspline_weights, noise2, noise3, band_fade; wrap_coord and wrap_index are private helpers
+// there). Same operation order, f32.
+
+struct BWeights {
+    mid: i32,
+    w: vec3<f32>,
+}
+
+fn bspline_weights(p: f32) -> BWeights {
+    let mid = ceil(p - 0.5);
+    let t = mid - (p - 0.5);
+    let w0 = 0.5 * t * t;
+    let w2 = 0.5 * (1.0 - t) * (1.0 - t);
+    return BWeights(i32(mid), vec3<f32>(w0, 1.0 - w0 - w2, w2));
+}
+
+fn wrap_coord(p: f32, n: f32) -> f32 {
+    return p - n * floor(p / n);
+}
+
+fn wrap_index(i: i32, n: i32) -> i32 {
+    return ((i % n) + n) % n;
+}
+
+fn noise2(p: vec2<f32>) -> f32 {
+    let ni = i32(textureDimensions(tile2).x);
+    let nf = f32(ni);
+    let bx = bspline_weights(wrap_coord(p.x, nf));
+    let by = bspline_weights(wrap_coord(p.y, nf));
+    var sum = 0.0;
+    for (var dy = 0; dy < 3; dy++) {
+        let row = wrap_index(by.mid + dy - 1, ni);
+        var line = 0.0;
+        for (var dx = 0; dx < 3; dx++) {
+            let col = wrap_index(bx.mid + dx - 1, ni);
+            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(col, row), 0).r;
+        }
+        sum += by.w[dy] * line;
+    }
+    return sum;
+}
+
+fn noise3(p: vec3<f32>) -> f32 {
+    let ni = i32(textureDimensions(tile3).x);
+    let nf = f32(ni);
+    let bx = bspline_weights(wrap_coord(p.x, nf));
+    let by = bspline_weights(wrap_coord(p.y, nf));
+    let bz = bspline_weights(wrap_coord(p.z, nf));
+    var sum = 0.0;
+    for (var dz = 0; dz < 3; dz++) {
+        let slab = wrap_index(bz.mid + dz - 1, ni);
+        var plane = 0.0;
+        for (var dy = 0; dy < 3; dy++) {
+            let row = wrap_index(by.mid + dy - 1, ni);
+            var line = 0.0;
+            for (var dx = 0; dx < 3; dx++) {
+                let col = wrap_index(bx.mid + dx - 1, ni);
+                line += bx.w[dx] * textureLoad(tile3, vec3<i32>(col, row, slab), 0).r;
+            }
+            plane += by.w[dy] * line;
+        }
+        sum += bz.w[dz] * plane;
+    }
+    return sum;
+}
+
+fn band_fade(band: u32, log2_footprint: f32) -> f32 {
+    return clamp(1.0 - (log2_footprint - f32(band)), 0.0, 1.0);
+}

@@ -1,0 +1,32 @@
+// The texture parameters as the GPU sees them: the byte layout written by
+// `proctex::render::Prepared::uniform_bytes` (analyzer/src/render.rs). Every array element is a
+// vec4 so that the uniform layout has no padding surprises.
+
+const MAX_BANDS: u32 = 12u;
+const MAX_KNOTS: u32 = 33u;
+
+struct Params {
+    // mean RGB, unused
+    mean: vec4<f32>,
+    // rows: principal axes
+    basis: array<vec4<f32>, 3>,
+    // 1/scale, cos(rotation), sin(rotation), unused
+    transform: vec4<f32>,
+    // bands, knots, solid (0/1), histogram (0/1)
+    counts: vec4<u32>,
+    // σ_M per channel
+    sigma: vec4<f32>,
+    // [band] → weight of channels 0, 1, 2
+    weights: array<vec4<f32>, 12>,
+    // [channel·12 + band] → offset (x, y, z) in coefficient units
+    offsets: array<vec4<f32>, 36>,
+    // [knot] → knot value of channels 0, 1, 2
+    knots: array<vec4<f32>, 33>,
+    // [knot] → Fritsch–Carlson tangent of channels 0, 1, 2
+    tangents: array<vec4<f32>, 33>,
+}
+
+@group(0) @binding(0) var<uniform> params: Params;
+// Wavelet-noise tiles (r32float, read with textureLoad: exact coefficients, no filtering).
+@group(0) @binding(1) var tile2: texture_2d<f32>;
+@group(0) @binding(2) var tile3: texture_3d<f32>;

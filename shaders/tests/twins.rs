@@ -1,0 +1,55 @@
+//! Every WGSL function has a Rust twin in the analyzer (the CPU reference renderer).
+
+/// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
+/// the same name, except for the ones listed in `RENAMED`.
+const TWIN_FILES: [(&str, &str); 4] = [
+    ("noise.wgsl", "analyzer/src/noise.rs"),
+    ("histogram.wgsl", "analyzer/src/histogram.rs"),
+    ("texture.wgsl", "analyzer/src/render.rs"),
+    ("plane.wgsl", "analyzer/src/render.rs"),
+];
+
+/// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
+/// renderer's pixel loop).
+const RENAMED: [(&str, &str); 2] = [
+    ("vs_main", "render_prepared"),
+    ("fs_main", "render_prepared"),
+];
+
+fn wgsl_functions(src: &str) -> Vec<String> {
+    src.lines()
+        .filter_map(|l| l.trim_start().strip_prefix("fn "))
+        .map(|rest| rest.split('(').next().unwrap().trim().to_string())
+        .collect()
+}
+
+#[test]
+fn every_wgsl_function_has_a_rust_twin() {
+    let root = format!("{}/..", env!("CARGO_MANIFEST_DIR"));
+    let mut checked = 0;
+    for (file, src) in proctex_shaders::FILES {
+        let functions = wgsl_functions(src);
+        if functions.is_empty() {
+            continue;
+        }
+        let rust_file = TWIN_FILES
+            .iter()
+            .find(|(w, _)| *w == file)
+            .unwrap_or_else(|| panic!("{file} has functions but no twin file in TWIN_FILES"))
+            .1;
+        let rust = std::fs::read_to_string(format!("{root}/{rust_file}")).unwrap();
+        for f in functions {
+            let twin = RENAMED
+                .iter()
+                .find(|(w, _)| *w == f)
+                .map(|(_, r)| *r)
+                .unwrap_or(&f);
+            assert!(
+                rust.contains(&format!("fn {twin}(")),
+                "WGSL `{f}` in {file} has no Rust twin `fn {twin}` in {rust_file}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 12, "only {checked} functions checked");
+}

@@ -1,0 +1,108 @@
+//! Every composed shader parses and validates with naga, and the uniform block it declares has
+//! exactly the size and constants the Rust side writes.
+
+use proctex::histogram::KNOT_Z;
+use proctex::params::{MAX_BANDS, MAX_KNOTS};
+use proctex::render::Prepared;
+
+fn parse(name: &str, src: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(src)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(src)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+    module
+}
+
+#[test]
+fn every_shader_validates() {
+    let shaders = proctex_shaders::shaders();
+    assert!(!shaders.is_empty());
+    for (name, src) in &shaders {
+        let module = parse(name, src);
+        assert!(
+            module.entry_points.len() >= 2,
+            "{name}: expected a vertex and a fragment entry point"
+        );
+    }
+}
+
+#[test]
+fn every_wgsl_file_is_used_by_a_shader() {
+    let all: String = proctex_shaders::shaders()
+        .into_iter()
+        .map(|(_, s)| s)
+        .collect();
+    for (name, src) in proctex_shaders::FILES {
+        assert!(all.contains(src), "{name} is not part of any shader");
+    }
+    // And every .wgsl file in the folder is listed.
+    let dir = env!("CARGO_MANIFEST_DIR");
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "wgsl") {
+            let file = path.file_name().unwrap().to_string_lossy().to_string();
+            assert!(
+                proctex_shaders::FILES.iter().any(|(n, _)| *n == file),
+                "{file} is not in proctex_shaders::FILES"
+            );
+        }
+    }
+}
+
+#[test]
+fn uniform_layout_matches_rust() {
+    let src = proctex_shaders::plane_shader();
+    let module = parse("plane", &src);
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).unwrap();
+    let (handle, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("Params"))
+        .expect("struct Params");
+    assert_eq!(layouter[handle].size as usize, Prepared::UNIFORM_SIZE);
+    let naga::TypeInner::Struct { members, .. } = &ty.inner else {
+        panic!("Params is not a struct");
+    };
+    let offsets: Vec<(String, u32)> = members
+        .iter()
+        .map(|m| (m.name.clone().unwrap_or_default(), m.offset))
+        .collect();
+    let want = [
+        ("mean", 0),
+        ("basis", 16),
+        ("transform", 64),
+        ("counts", 80),
+        ("sigma", 96),
+        ("weights", 112),
+        ("offsets", 112 + 16 * MAX_BANDS as u32),
+        ("knots", 112 + 64 * MAX_BANDS as u32),
+        (
+            "tangents",
+            112 + 64 * MAX_BANDS as u32 + 16 * MAX_KNOTS as u32,
+        ),
+    ];
+    for ((name, off), (wname, woff)) in offsets.iter().zip(want) {
+        assert_eq!((name.as_str(), *off), (wname, woff));
+    }
+    // Constants shared with Rust.
+    let constant = |name: &str| -> String {
+        src.lines()
+            .find(|l| l.trim_start().starts_with(&format!("const {name}:")))
+            .unwrap_or_else(|| panic!("const {name}"))
+            .split('=')
+            .nth(1)
+            .unwrap()
+            .trim()
+            .trim_end_matches(';')
+            .trim_end_matches('u')
+            .to_string()
+    };
+    assert_eq!(constant("MAX_BANDS"), MAX_BANDS.to_string());
+    assert_eq!(constant("MAX_KNOTS"), MAX_KNOTS.to_string());
+    assert_eq!(constant("KNOT_Z").parse::<f32>().unwrap(), KNOT_Z);
+}

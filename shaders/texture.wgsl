@@ -1,0 +1,52 @@
+// The procedural texture at a point. Twins: analyzer/src/render.rs (Prepared::texel,
+// channel_noise, shade).
+
+fn texel(world: vec3<f32>) -> vec3<f32> {
+    let c = params.transform.y;
+    let s = params.transform.z;
+    let inv_scale = params.transform.x;
+    return vec3<f32>(
+        (c * world.x + s * world.y) * inv_scale,
+        (-s * world.x + c * world.y) * inv_scale,
+        world.z * inv_scale,
+    );
+}
+
+fn channel_noise(c: u32, u: vec3<f32>, log2_fp: f32) -> f32 {
+    var sum = 0.0;
+    for (var j = 0u; j < params.counts.x; j++) {
+        let w = params.weights[j][c] * band_fade(j, log2_fp);
+        if (w == 0.0) {
+            continue;
+        }
+        let f = 1.0 / f32(1u << j);
+        let o = params.offsets[c * MAX_BANDS + j].xyz;
+        var v: f32;
+        if (params.counts.z != 0u) {
+            v = noise3(vec3<f32>(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z));
+        } else {
+            v = noise2(vec2<f32>(u.x * f + o.x, u.y * f + o.y));
+        }
+        sum += w * v;
+    }
+    return sum;
+}
+
+fn shade(world: vec3<f32>, log2_fp: f32) -> vec3<f32> {
+    let u = texel(world);
+    var rgb = params.mean.xyz;
+    let k = params.counts.y;
+    for (var c = 0u; c < 3u; c++) {
+        let g = channel_noise(c, u, log2_fp);
+        var v: f32;
+        if (params.counts.w != 0u && params.sigma[c] > 0.0) {
+            v = spline_eval(c, knot_coordinate(g, params.sigma[c]));
+        } else if (params.counts.w != 0u) {
+            v = params.knots[k / 2u][c];
+        } else {
+            v = g;
+        }
+        rgb += v * params.basis[c].xyz;
+    }
+    return rgb;
+}

@@ -1,0 +1,5 @@
+//! The Proctex browser app. `renderer` draws the procedural texture with wgpu from the shaders
+//! in `shaders/`; it is plain wgpu (no UI types) so that native tests can run it headless and
+//! compare its pixels with the CPU reference renderer.
+
+pub mod renderer;

@@ -1,0 +1,208 @@
+//! The GPU image equals the CPU reference image: the plane shader rendered by wgpu (natively,
+//! on any Vulkan adapter — Mesa's software lavapipe in CI) against `proctex::render::render`,
+//! for the same params and view.
+//!
+//! Tolerance: mean absolute error ≤ 0.25/255 and no pixel off by more than 3/255 over the 8-bit
+//! outputs. Both sides evaluate the same f32 expressions in the same order; what differs is
+//! rounding (fused multiply-adds the GPU compiler may form, `exp`-free but `floor`/`ceil` on
+//! values that land within an ulp of an integer, which can pick the neighbouring coefficient
+//! set where the B-spline weight is ~0) and the final conversion to 8 bits.
+
+use proctex::analyze::{Options, analyze_bytes};
+use proctex::params::Params;
+use proctex::render::{View, render};
+use proctex_web::renderer::TextureRenderer;
+
+struct Gpu {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    adapter_name: String,
+}
+
+fn gpu() -> Gpu {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: wgpu::Backends::VULKAN,
+        ..wgpu::InstanceDescriptor::new_without_display_handle()
+    });
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::LowPower,
+        force_fallback_adapter: false,
+        compatible_surface: None,
+        ..Default::default()
+    }))
+    .expect(
+        "no Vulkan adapter: install Mesa's software Vulkan driver (apt-get install \
+         mesa-vulkan-drivers); scripts/test.sh does",
+    );
+    let adapter_name = adapter.get_info().name;
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("gpu_vs_cpu"),
+        required_features: wgpu::Features::empty(),
+        required_limits: wgpu::Limits::downlevel_defaults(),
+        ..Default::default()
+    }))
+    .expect("device");
+    Gpu {
+        device,
+        queue,
+        adapter_name,
+    }
+}
+
+/// Renders `params` with the GPU pipeline into a `w × h` rgba8unorm texture; returns RGB8.
+fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, view: &View) -> Vec<u8> {
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("target"),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let mut renderer = TextureRenderer::new(&gpu.device, format);
+    renderer.set_params(&gpu.device, &gpu.queue, params);
+    renderer.set_view(&gpu.queue, view);
+    let row = (w * 4).div_ceil(256) * 256;
+    let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: (row * h) as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
+    {
+        let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("texture"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &target_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        renderer.draw(&mut pass);
+    }
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture: &target,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &readback,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    gpu.queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    let data = slice.get_mapped_range().expect("mapped");
+    let mut rgb = Vec::with_capacity((w * h * 3) as usize);
+    for y in 0..h {
+        let line = &data[(y * row) as usize..(y * row + w * 4) as usize];
+        for px in line.chunks_exact(4) {
+            rgb.extend_from_slice(&px[..3]);
+        }
+    }
+    rgb
+}
+
+fn sample_params(name: &str) -> Params {
+    let path = format!("{}/../www/samples/{name}", env!("CARGO_MANIFEST_DIR"));
+    analyze_bytes(&std::fs::read(path).unwrap(), &Options::default())
+        .unwrap()
+        .params
+}
+
+fn compare(gpu: &Gpu, what: &str, params: &Params, w: u32, h: u32, view: &View) {
+    let cpu = render(params, w, h, view).to_rgb8();
+    let gpu_rgb = render_gpu(gpu, params, w, h, view);
+    let diffs: Vec<u8> = cpu
+        .iter()
+        .zip(&gpu_rgb)
+        .map(|(a, b)| a.abs_diff(*b))
+        .collect();
+    let mae = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
+    let max = *diffs.iter().max().unwrap();
+    println!(
+        "{what:<40} {w}×{h} on {}: mean |GPU − CPU| = {mae:.4}/255, max {max}/255",
+        gpu.adapter_name
+    );
+    assert!(
+        mae <= 0.25 && max <= 3,
+        "{what}: mean {mae}/255, max {max}/255"
+    );
+    // And the image is a texture, not a flat colour.
+    let mean = cpu.iter().map(|&v| v as f64).sum::<f64>() / cpu.len() as f64;
+    let var = cpu.iter().map(|&v| (v as f64 - mean).powi(2)).sum::<f64>() / cpu.len() as f64;
+    assert!(var > 4.0, "{what}: flat image");
+}
+
+#[test]
+fn gpu_matches_cpu_reference() {
+    let gpu = gpu();
+    let rock = sample_params("stk_rock_mountain_512.png");
+    compare(&gpu, "rock, 1:1", &rock, 256, 192, &View::default());
+
+    let mut no_hist = sample_params("skimage_gravel_512.png");
+    let proctex::params::Model::Noise(m) = &mut no_hist.model;
+    m.histogram.enabled = false;
+    compare(
+        &gpu,
+        "gravel, histogram off",
+        &no_hist,
+        200,
+        160,
+        &View::default(),
+    );
+
+    // Rotated, scaled, panned, zoomed out 3.3× (band clamping active).
+    let mut turned = rock.clone();
+    turned.transform.rotation_deg = 33.0;
+    turned.transform.scale = 1.7;
+    let view = View {
+        origin: [-311.5, 97.25],
+        pixel_size: 5.6,
+        z: 0.0,
+    };
+    compare(&gpu, "rock, rotated + minified", &turned, 160, 160, &view);
+
+    // A solid-texture slice.
+    let mut solid = sample_params("skimage_grass_512.png");
+    solid.solid = true;
+    let view = View {
+        z: 41.3,
+        ..View::default()
+    };
+    compare(&gpu, "grass, solid slice z = 41.3", &solid, 128, 128, &view);
+}
