@@ -8,6 +8,10 @@ struct View {
     pixel_size: f32,
     // world z of the slice (solid textures)
     z: f32,
+    // framebuffer position (pixels) of the view's top-left corner: the view may be a rectangle
+    // inside a larger target (the app's canvas); 0 when the target is the view
+    frame_offset: vec2<f32>,
+    unused: vec2<f32>,
 }
 
 @group(1) @binding(0) var<uniform> view: View;
@@ -21,8 +25,9 @@ fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 
 @fragment
 fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    // frag.xy is the pixel centre (x + 0.5, y + 0.5), y down: as the CPU renderer.
-    let world = vec3<f32>(view.origin + frag.xy * view.pixel_size, view.z);
+    // frag.xy is the pixel centre (x + 0.5, y + 0.5) in the target, y down: as the CPU
+    // renderer once the view's own offset is removed.
+    let world = vec3<f32>(view.origin + (frag.xy - view.frame_offset) * view.pixel_size, view.z);
     let log2_fp = log2(view.pixel_size * params.transform.x);
     return vec4<f32>(shade(world, log2_fp), 1.0);
 }

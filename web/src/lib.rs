@@ -3,3 +3,8 @@
 //! compare its pixels with the CPU reference renderer.
 
 pub mod renderer;
+
+#[cfg(target_arch = "wasm32")]
+mod app;
+#[cfg(target_arch = "wasm32")]
+mod web;

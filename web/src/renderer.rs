@@ -8,13 +8,24 @@
 use proctex::params::Params;
 use proctex::render::{Prepared, View, tile_for};
 
-/// Bytes of the view uniform (`struct View` in `shaders/plane.wgsl`).
-pub fn view_bytes(view: &View) -> [u8; 16] {
-    let mut out = [0u8; 16];
-    for (i, v) in [view.origin[0], view.origin[1], view.pixel_size, view.z]
-        .iter()
-        .enumerate()
-    {
+/// Size of the view uniform (`struct View` in `shaders/plane.wgsl`).
+pub const VIEW_UNIFORM_SIZE: usize = 32;
+
+/// Bytes of the view uniform: the CPU renderer's [`View`] plus the framebuffer position of the
+/// view's top-left pixel (the view can be a rectangle inside the canvas).
+pub fn view_bytes(view: &View, frame_offset: [f32; 2]) -> [u8; VIEW_UNIFORM_SIZE] {
+    let mut out = [0u8; VIEW_UNIFORM_SIZE];
+    let values = [
+        view.origin[0],
+        view.origin[1],
+        view.pixel_size,
+        view.z,
+        frame_offset[0],
+        frame_offset[1],
+        0.0,
+        0.0,
+    ];
+    for (i, v) in values.iter().enumerate() {
         out[i * 4..i * 4 + 4].copy_from_slice(&v.to_le_bytes());
     }
     out
@@ -37,6 +48,7 @@ pub struct TextureRenderer {
     params_group: Option<wgpu::BindGroup>,
     view_group: wgpu::BindGroup,
     tiles: Option<TileKey>,
+    uploaded: Option<Params>,
 }
 
 fn r32_texture(
@@ -160,7 +172,7 @@ impl TextureRenderer {
             })
         };
         let params_buffer = uniform("proctex params", Prepared::UNIFORM_SIZE as u64);
-        let view_buffer = uniform("proctex view", 16);
+        let view_buffer = uniform("proctex view", VIEW_UNIFORM_SIZE as u64);
         let view_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("proctex view"),
             layout: &view_layout,
@@ -177,12 +189,17 @@ impl TextureRenderer {
             params_group: None,
             view_group,
             tiles: None,
+            uploaded: None,
         }
     }
 
     /// Uploads the parameters (one uniform write), and the noise tiles when the seed or the
     /// dimension changed.
     pub fn set_params(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, params: &Params) {
+        if self.uploaded.as_ref() == Some(params) {
+            return;
+        }
+        self.uploaded = Some(params.clone());
         queue.write_buffer(
             &self.params_buffer,
             0,
@@ -267,9 +284,10 @@ impl TextureRenderer {
         self.tiles = Some(key);
     }
 
-    /// Sets which part of world space the target shows (one 16-byte write).
-    pub fn set_view(&self, queue: &wgpu::Queue, view: &View) {
-        queue.write_buffer(&self.view_buffer, 0, &view_bytes(view));
+    /// Sets which part of world space the view shows and where the view's top-left pixel is in
+    /// the target (one 32-byte write).
+    pub fn set_view(&self, queue: &wgpu::Queue, view: &View, frame_offset: [f32; 2]) {
+        queue.write_buffer(&self.view_buffer, 0, &view_bytes(view, frame_offset));
     }
 
     /// Draws the full-screen triangle; call after [`TextureRenderer::set_params`].

@@ -68,7 +68,7 @@ fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, view: &View) -> Vec<u8
     });
     let mut renderer = TextureRenderer::new(&gpu.device, format);
     renderer.set_params(&gpu.device, &gpu.queue, params);
-    renderer.set_view(&gpu.queue, view);
+    renderer.set_view(&gpu.queue, view, [0.0, 0.0]);
     let row = (w * 4).div_ceil(256) * 256;
     let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),

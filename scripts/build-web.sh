@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Builds the browser app into www/pkg: the wasm crate (profile wasm-release), wasm-bindgen
+# (pinned to the crate's wasm-bindgen version), then wasm-opt -Oz from npm's binaryen.
+# Installs what it needs: the wasm32 target, wasm-bindgen-cli, and the npm tools (in tools/).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+export PATH="$HOME/.cargo/bin:$PATH"
+WB_VERSION=$(sed -n 's/^wasm-bindgen = "=\(.*\)"/\1/p' web/Cargo.toml)
+
+rustup target list --installed | grep -q wasm32-unknown-unknown || rustup target add wasm32-unknown-unknown
+if [ "$(wasm-bindgen --version 2>/dev/null | cut -d' ' -f2)" != "$WB_VERSION" ]; then
+    echo "installing wasm-bindgen-cli $WB_VERSION (a few minutes, once)"
+    cargo install wasm-bindgen-cli --version "$WB_VERSION"
+fi
+if [ ! -x tools/node_modules/.bin/wasm-opt ]; then
+    (cd tools && npm ci --no-audit --no-fund)
+fi
+
+cargo build -p proctex-web --target wasm32-unknown-unknown --profile wasm-release
+rm -rf www/pkg
+wasm-bindgen --target web --no-typescript --out-dir www/pkg \
+    target/wasm32-unknown-unknown/wasm-release/proctex_web.wasm
+tools/node_modules/.bin/wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-float-to-int \
+    --enable-sign-ext --enable-mutable-globals \
+    www/pkg/proctex_web_bg.wasm -o www/pkg/proctex_web_bg.wasm
+echo "www/pkg/proctex_web_bg.wasm: $(stat -c %s www/pkg/proctex_web_bg.wasm) bytes"
