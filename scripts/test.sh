@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Runs every test of the project, exactly as CI does (.ci/run calls this script):
-# formatting, lints (warnings are errors), all cargo tests, then the speed benchmark (prints
-# ratios measured in one run; it asserts nothing about time).
-# Installs what it needs: a Rust toolchain with rustfmt and clippy, and Mesa's software Vulkan
-# driver (lavapipe) for the GPU-vs-CPU test of the shaders.
+# formatting, lints (warnings are errors, native and wasm), all cargo tests (with naga
+# validation and the native GPU-vs-CPU shader test), the wasm build, the Playwright tests in
+# Chromium, then the speed benchmark (prints ratios measured in one run; asserts nothing).
+# Installs what it needs: a Rust toolchain with rustfmt and clippy, Mesa's software Vulkan
+# driver (lavapipe), Debian's chromium, and (through scripts/build-web.sh) the wasm target,
+# wasm-bindgen-cli and the npm packages.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,9 +20,12 @@ apt_install() {
 }
 
 step "system packages"
-if ! ls /usr/share/vulkan/icd.d/lvp_icd.*.json >/dev/null 2>&1; then
-    echo "installing mesa-vulkan-drivers (software Vulkan for the GPU-vs-CPU test)"
-    apt_install mesa-vulkan-drivers
+need=()
+ls /usr/share/vulkan/icd.d/lvp_icd.*.json >/dev/null 2>&1 || need+=(mesa-vulkan-drivers)
+[ -x /usr/bin/chromium ] || need+=(chromium)
+if [ ${#need[@]} -gt 0 ]; then
+    echo "installing ${need[*]}"
+    apt_install "${need[@]}"
 fi
 
 step "toolchain"
@@ -45,6 +50,8 @@ cargo fmt --all --check
 
 step "cargo clippy --all-targets -- -D warnings"
 cargo clippy --workspace --release --all-targets -- -D warnings
+rustup target list --installed | grep -q wasm32-unknown-unknown || rustup target add wasm32-unknown-unknown
+cargo clippy -p proctex-web --target wasm32-unknown-unknown --release -- -D warnings
 
 step "cargo test"
 log=$(mktemp)
@@ -57,8 +64,25 @@ read -r passed failed < <(awk '/^test result:/ {
 } END { print p + 0, f + 0 }' "$log")
 rm -f "$log"
 
+step "wasm build (scripts/build-web.sh)"
+./scripts/build-web.sh
+size=$(stat -c %s www/pkg/proctex_web_bg.wasm)
+echo "wasm after wasm-opt: $size bytes (budget 4000000)"
+[ "$size" -le 4000000 ] || { echo "the wasm is over its 4 MB budget"; exit 1; }
+
+step "Playwright (e2e/, Chromium with SwiftShader WebGPU)"
+(cd e2e && npm ci --no-audit --no-fund)
+elog=$(mktemp)
+(cd e2e && npx playwright test) 2>&1 | grep -v '^\[WebServer\]' | tee "$elog"
+e2e_passed=$(sed -nE 's/^ *([0-9]+) passed.*/\1/p' "$elog" | tail -1)
+e2e_failed=$(sed -nE 's/^ *([0-9]+) failed.*/\1/p' "$elog" | tail -1)
+rm -f "$elog"
+e2e_passed=${e2e_passed:-0}
+e2e_failed=${e2e_failed:-0}
+
 step "benchmark (ratios within one run; not a pass/fail test)"
 cargo bench -p proctex-analyzer --bench analysis
 
 step "summary"
-echo "cargo tests: ${passed} passed, ${failed} failed"
+echo "cargo: ${passed} passed, ${failed} failed; playwright: ${e2e_passed} passed, ${e2e_failed} failed"
+echo "tests: $((passed + e2e_passed)) passed, $((failed + e2e_failed)) failed"

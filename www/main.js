@@ -25,16 +25,71 @@ async function fetchBytes(url) {
   return new Uint8Array(await r.arrayBuffer());
 }
 
+// Decodes an image file with the browser (natively, off the main thread, EXIF orientation
+// applied) and hands the RGBA pixels to the analysis. A file the browser cannot decode is
+// reported in the app, which keeps its current texture.
+async function loadImage(bytes, name = 'image') {
+  let bitmap;
+  try {
+    bitmap = await createImageBitmap(new Blob([bytes]), { imageOrientation: 'from-image' });
+  } catch (e) {
+    wasm.reportError(`${name}: cannot read the image: the file is empty, truncated, corrupt ` +
+      'or not an image format the browser decodes');
+    return false;
+  }
+  const { width, height } = bitmap;
+  const canvas = new OffscreenCanvas(width, height);
+  const ctx = canvas.getContext('2d', { willReadFrequently: true });
+  ctx.drawImage(bitmap, 0, 0);
+  bitmap.close();
+  const rgba = ctx.getImageData(0, 0, width, height).data;
+  wasm.loadPixels(new Uint8Array(rgba.buffer), width, height, name);
+  return true;
+}
+
 window.proctex = {
   ready: false,
   samples: SAMPLES,
-  loadImage: (bytes, name) => wasm.loadImage(bytes, name || 'image'),
-  loadSample: async (name) => wasm.loadImage(await fetchBytes(`samples/${name}`), name),
+  loadImage,
+  loadSample: async (name) => loadImage(await fetchBytes(`samples/${name}`), name),
   getParams: () => wasm.getParams() ?? null,
   setParams: (json) => wasm.setParams(typeof json === 'string' ? json : JSON.stringify(json)),
   setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
   state: () => JSON.parse(wasm.state()),
+  requestRepaint: () => wasm.requestRepaint(),
 };
+
+// Photo in: drag-and-drop anywhere on the page, or paste an image from the clipboard.
+function imageFileOf(items) {
+  for (const item of items || []) {
+    const file = item instanceof File ? item : (item.kind === 'file' ? item.getAsFile() : null);
+    if (file) return file;
+  }
+  return null;
+}
+
+async function loadFile(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  return loadImage(bytes, file.name || 'pasted image');
+}
+
+function installPhotoInputs() {
+  // Capture phase: eframe's own canvas handlers would otherwise take the drop (and hand
+  // egui the raw bytes, which the app would decode on the UI thread).
+  document.addEventListener('dragover', (e) => {
+    e.preventDefault(); e.stopPropagation(); e.dataTransfer.dropEffect = 'copy';
+  }, true);
+  document.addEventListener('drop', (e) => {
+    e.preventDefault(); e.stopPropagation();
+    const file = imageFileOf(e.dataTransfer && e.dataTransfer.files);
+    if (file) loadFile(file);
+    else wasm.reportError('Nothing to open: drop an image file.');
+  }, true);
+  document.addEventListener('paste', (e) => {
+    const file = imageFileOf(e.clipboardData && e.clipboardData.items);
+    if (file) { e.preventDefault(); loadFile(file); }
+  });
+}
 
 async function main() {
   await init();
@@ -55,6 +110,7 @@ async function main() {
       show(`Proctex stopped on an internal error:\n${handle.panic_message() ?? ''}`, true);
     }
   }, 500);
+  installPhotoInputs();
   await window.proctex.loadSample(DEFAULT_SAMPLE);
   window.proctex.ready = true;
 }

@@ -87,6 +87,7 @@ impl Options {
 }
 
 /// Decodes, crops, reduces and analyses a photo file's bytes.
+#[cfg(feature = "decode")]
 pub fn analyze_bytes(bytes: &[u8], opts: &Options) -> Result<Analysis> {
     opts.validate()?;
     let photo = Photo::decode(bytes)?;

@@ -3,8 +3,10 @@
 //! Pixels stay *display-encoded* (sRGB-ish code values scaled to `[0, 1]`), not linearised: the
 //! exported shaders then reproduce the photo's numbers directly.
 
+#[cfg(feature = "decode")]
 use std::io::Cursor;
 
+#[cfg(feature = "decode")]
 use image::{DynamicImage, ImageDecoder, ImageReader, Limits};
 
 use crate::error::{Error, Result};
@@ -66,6 +68,7 @@ impl Crop {
     }
 }
 
+#[cfg(feature = "decode")]
 fn decode_error(e: image::ImageError) -> Error {
     use image::ImageError as E;
     match e {
@@ -80,6 +83,7 @@ fn decode_error(e: image::ImageError) -> Error {
 }
 
 impl Photo {
+    #[cfg(feature = "decode")]
     /// Decodes PNG, JPEG, WebP, GIF (first frame), BMP or TIFF bytes, 8 or 16 bit, grey, grey +
     /// alpha, RGB or RGBA (alpha ignored), applying the EXIF orientation where there is one.
     pub fn decode(bytes: &[u8]) -> Result<Photo> {
@@ -125,6 +129,7 @@ impl Photo {
     }
 
     /// Converts any decoded image; 16-bit values keep their precision.
+    #[cfg(feature = "decode")]
     pub fn from_dynamic(img: &DynamicImage) -> Photo {
         let rgb = img.to_rgb32f();
         Photo {
@@ -265,6 +270,7 @@ impl Photo {
 /// Whether the last scan (SOS, `FF DA`) of a JPEG is followed by an end-of-image marker
 /// (`FF D9`). The JPEG decoder is lenient and fills a cut-off file with grey, which would be
 /// analysed as if it were texture; a browser shows such a file half grey too.
+#[cfg(feature = "decode")]
 fn jpeg_is_complete(bytes: &[u8]) -> bool {
     let last = |m: u8| bytes.windows(2).rposition(|w| w == [0xff, m]);
     match (last(0xda), last(0xd9)) {

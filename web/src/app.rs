@@ -9,7 +9,8 @@ use std::collections::BTreeMap;
 
 use eframe::egui;
 use eframe::egui_wgpu;
-use proctex::analyze::{Analysis, Options, analyze_bytes};
+use proctex::analyze::{Analysis, Options, analyze_photo};
+use proctex::input::Photo;
 use proctex::params::{Model, Params};
 use proctex::render::View;
 
@@ -18,8 +19,15 @@ use crate::renderer::TextureRenderer;
 /// Something JS asked for, applied at the start of the next frame.
 #[derive(Debug)]
 pub enum Command {
-    /// Analyse these image bytes (named for display).
-    LoadImage { bytes: Vec<u8>, name: String },
+    /// Analyse a decoded image: interleaved 8-bit RGBA (the browser decodes files).
+    LoadPixels {
+        rgba: Vec<u8>,
+        width: u32,
+        height: u32,
+        name: String,
+    },
+    /// Show an error that happened outside the app (a file the browser could not decode).
+    Error(String),
     /// Replace the current params (already validated).
     SetParams(Box<Params>),
     /// Show this part of world space: top-left world point and world units per CSS pixel.
@@ -114,6 +122,7 @@ impl ProctexApp {
             let renderer = TextureRenderer::new(&rs.device, rs.target_format);
             rs.renderer.write().callback_resources.insert(renderer);
         }
+        cc.egui_ctx.set_fonts(ui_fonts());
         CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
         ProctexApp {
             photo: None,
@@ -130,9 +139,11 @@ impl ProctexApp {
         }
     }
 
-    fn load(&mut self, bytes: &[u8], name: String) {
+    fn load(&mut self, rgba: &[u8], width: u32, height: u32, name: String) {
         let t = now_ms();
-        match analyze_bytes(bytes, &Options::default()) {
+        let analysis = Photo::from_rgba8(width, height, rgba)
+            .and_then(|photo| analyze_photo(&photo, &Options::default()));
+        match analysis {
             Ok(a) => {
                 self.analysis_ms = Some(now_ms() - t);
                 self.params = Some(a.params.clone());
@@ -155,7 +166,13 @@ impl ProctexApp {
         let cmds: Vec<Command> = COMMANDS.with(|c| std::mem::take(&mut *c.borrow_mut()));
         for cmd in cmds {
             match cmd {
-                Command::LoadImage { bytes, name } => self.load(&bytes, name),
+                Command::LoadPixels {
+                    rgba,
+                    width,
+                    height,
+                    name,
+                } => self.load(&rgba, width, height, name),
+                Command::Error(e) => self.error = Some(e),
                 Command::SetParams(p) => {
                     self.params = Some(*p);
                     self.error = None;
@@ -438,6 +455,30 @@ impl egui_wgpu::CallbackTrait for TextureCallback {
             r.draw(pass);
         }
     }
+}
+
+/// One text face (Ubuntu Light) and egui's icons, for every family (see assets/fonts).
+fn ui_fonts() -> egui::FontDefinitions {
+    use std::sync::Arc;
+    let mut fonts = egui::FontDefinitions::empty();
+    fonts.font_data.insert(
+        "Ubuntu-Light".into(),
+        Arc::new(egui::FontData::from_static(include_bytes!(
+            "../assets/fonts/Ubuntu-Light.ttf"
+        ))),
+    );
+    fonts.font_data.insert(
+        "egui-icons".into(),
+        Arc::new(egui::FontData::from_static(include_bytes!(
+            "../assets/fonts/egui-icons.ttf"
+        ))),
+    );
+    for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
+        fonts
+            .families
+            .insert(family, vec!["Ubuntu-Light".into(), "egui-icons".into()]);
+    }
+    fonts
 }
 
 fn now_ms() -> f64 {

@@ -46,10 +46,21 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement) -> Result<WebHandle, JsVa
     Ok(WebHandle { runner })
 }
 
-/// Analyses image bytes (any format the analyzer reads) and shows the texture.
-#[wasm_bindgen(js_name = loadImage)]
-pub fn load_image(bytes: Vec<u8>, name: String) {
-    send(Command::LoadImage { bytes, name });
+/// Analyses a decoded image (interleaved 8-bit RGBA, `width × height`) and shows the texture.
+#[wasm_bindgen(js_name = loadPixels)]
+pub fn load_pixels(rgba: Vec<u8>, width: u32, height: u32, name: String) {
+    send(Command::LoadPixels {
+        rgba,
+        width,
+        height,
+        name,
+    });
+}
+
+/// Shows an error message in the app (e.g. a file the browser could not decode).
+#[wasm_bindgen(js_name = reportError)]
+pub fn report_error(message: String) {
+    send(Command::Error(message));
 }
 
 /// The current params as JSON (`proctex/1`), or `null` before the first analysis.
@@ -72,6 +83,16 @@ pub fn set_view(origin_x: f32, origin_y: f32, units_per_point: f32) {
     send(Command::SetView {
         origin: [origin_x, origin_y],
         units_per_point,
+    });
+}
+
+/// Asks for another frame (egui repaints only on events; tests use this to step frames).
+#[wasm_bindgen(js_name = requestRepaint)]
+pub fn request_repaint() {
+    crate::app::CONTEXT.with(|c| {
+        if let Some(ctx) = c.borrow().as_ref() {
+            ctx.request_repaint();
+        }
     });
 }
 

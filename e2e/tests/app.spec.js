@@ -1,0 +1,173 @@
+// The browser app in Debian Chromium with SwiftShader WebGPU.
+const { test } = require('@playwright/test');
+const fs = require('fs');
+const path = require('path');
+const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, ROOT } = require('./helpers');
+
+// An integer-aligned square well inside the texture view.
+function innerSquare(rect, size) {
+  const [x, y, w, h] = rect;
+  const left = Math.ceil(x) + Math.floor((w - size) / 2);
+  const top = Math.ceil(y) + Math.floor((h - size) / 2);
+  return [left, top, size, size];
+}
+
+test('opens on the sample, already rendered', async ({ page }) => {
+  await openApp(page);
+  const s = await state(page);
+  expect(s.photo).toBe('stk_rock_mountain_512.png');
+  expect(s.error).toBeNull();
+  expect(s.analysis_ms).toBeGreaterThan(0);
+  const img = await grab(page, innerSquare(s.widgets.texture, 256));
+  const stats = channelStats(img);
+  // A real texture: varied, and with the photo's greyish colour.
+  for (const c of stats) {
+    expect(c.sd).toBeGreaterThan(8);
+    expect(c.mean).toBeGreaterThan(100);
+    expect(c.mean).toBeLessThan(200);
+  }
+});
+
+test('GPU view equals the CPU reference renderer', async ({ page }) => {
+  await openApp(page);
+  // Fixed view: world origin (37.25, -11.5) at the view's top-left, 1.5 world units per pixel.
+  const origin = [37.25, -11.5], unitsPerPoint = 1.5;
+  await page.evaluate(([o, u]) => window.proctex.setView(o[0], o[1], u), [origin, unitsPerPoint]);
+  await waitFrames(page, 3);
+  const s = await state(page);
+  const [vx, vy] = s.widgets.texture;
+  const size = 256;
+  // The view's first whole pixel column/row and the world point at its top-left corner.
+  const px = Math.ceil(vx) + 8, py = Math.ceil(vy) + 8;
+  const gpu = await grab(page, [px, py, size, size]);
+  const frameX = Math.round(vx), frameY = Math.round(vy);
+  const cpu = cliRender(await page.evaluate(() => window.proctex.getParams()), {
+    width: size, height: size, pixelSize: unitsPerPoint,
+    origin: [origin[0] + (px - frameX) * unitsPerPoint, origin[1] + (py - frameY) * unitsPerPoint],
+  });
+  let sum = 0, max = 0;
+  for (let i = 0; i < size * size; i++) {
+    for (let c = 0; c < 3; c++) {
+      const d = Math.abs(gpu.data[i * 4 + c] - cpu.data[i * 4 + c]);
+      sum += d; max = Math.max(max, d);
+    }
+  }
+  const mae = sum / (size * size * 3);
+  console.log(`GPU vs CPU over ${size}×${size}: mean |diff| = ${mae.toFixed(4)}/255, max ${max}/255`);
+  expect(mae).toBeLessThan(0.5);
+});
+
+test('dragging the finest band weight raises and removes high-frequency energy', async ({ page }) => {
+  await openApp(page);
+  const before = await state(page);
+  const square = innerSquare(before.widgets.texture, 256);
+  const energy0 = highFrequencyEnergy(await grab(page, square));
+  const [x, y, w, h] = before.widgets['weight.0.0'];
+  // The slider's rail is the left part of the widget (the value box and label follow it).
+  const railLeft = x + 2, railRight = x + 100 - 2, cy = y + h / 2;
+  const knob = async () => {
+    const p = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+    return p.model.weights[0][0];
+  };
+  const w0 = await knob();
+  await page.mouse.move(railLeft + 20, cy);
+  await page.mouse.down();
+  await page.mouse.move(railRight, cy, { steps: 8 });
+  await page.mouse.up();
+  await waitFrames(page, 3);
+  const wHigh = await knob();
+  expect(wHigh).toBeGreaterThan(w0 * 1.5);
+  const energyHigh = highFrequencyEnergy(await grab(page, square));
+  await page.mouse.move(railLeft + 40, cy);
+  await page.mouse.down();
+  await page.mouse.move(railLeft - 40, cy, { steps: 8 });
+  await page.mouse.up();
+  await waitFrames(page, 3);
+  expect(await knob()).toBe(0);
+  const energyZero = highFrequencyEnergy(await grab(page, square));
+  console.log(`high-frequency energy: analysed ${energy0.toFixed(1)}, raised ${energyHigh.toFixed(1)}, zero ${energyZero.toFixed(1)}`);
+  expect(energyHigh).toBeGreaterThan(energy0 * 1.3);
+  expect(energyZero).toBeLessThan(energy0 * 0.8);
+  // One undo step per drag.
+  expect((await state(page)).undo).toBe(2);
+});
+
+test('wheel zooms and drag pans the view', async ({ page }) => {
+  await openApp(page);
+  const s0 = await state(page);
+  const [x, y, w, h] = s0.widgets.texture;
+  const cx = x + w / 2, cy = y + h / 2;
+  await page.mouse.move(cx, cy);
+  await page.mouse.wheel(0, 400); // scroll down: zoom out
+  await waitFrames(page, 10);
+  const s1 = await state(page);
+  expect(s1.view_units_per_point).toBeGreaterThan(s0.view_units_per_point * 1.2);
+  await page.mouse.move(cx, cy);
+  await page.mouse.down();
+  await page.mouse.move(cx - 100, cy - 50, { steps: 5 });
+  await page.mouse.up();
+  await waitFrames(page, 3);
+  const s2 = await state(page);
+  expect(s2.view_origin[0]).toBeCloseTo(s1.view_origin[0] + 100 * s1.view_units_per_point, 0);
+  expect(s2.view_origin[1]).toBeCloseTo(s1.view_origin[1] + 50 * s1.view_units_per_point, 0);
+});
+
+test('a corrupt file and a text file give a visible error and keep the texture', async ({ page }) => {
+  await openApp(page);
+  const params = await page.evaluate(() => window.proctex.getParams());
+  for (const file of ['truncated.png', 'text.png']) {
+    const bytes = [...fs.readFileSync(path.join(ROOT, 'analyzer', 'tests', 'bad', file))];
+    await page.evaluate(([b, n]) => window.proctex.loadImage(new Uint8Array(b), n), [bytes, file]);
+    await waitFrames(page, 3);
+    const s = await state(page);
+    expect(s.error).toContain(file);
+    expect(s.widgets.error).toBeTruthy();
+    expect(s.photo).toBe('stk_rock_mountain_512.png');
+    expect(await page.evaluate(() => window.proctex.getParams())).toBe(params);
+  }
+});
+
+// Dispatches a drop (or paste) of `file` on the page, as a real drag from the desktop does.
+async function dropFile(page, filePath, kind) {
+  const bytes = [...fs.readFileSync(filePath)];
+  const name = path.basename(filePath);
+  await page.evaluate(([b, n, k]) => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([new Uint8Array(b)], n, { type: 'image/png' }));
+    if (k === 'drop') {
+      const target = document.getElementById('proctex_canvas');
+      target.dispatchEvent(new DragEvent('dragover', { dataTransfer: dt, bubbles: true, cancelable: true }));
+      target.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    } else {
+      document.dispatchEvent(new ClipboardEvent('paste', { clipboardData: dt, bubbles: true, cancelable: true }));
+    }
+  }, [bytes, name, kind]);
+  await page.waitForFunction((n) => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().photo === n;
+  }, name, { polling: 100 });
+  await waitFrames(page, 3);
+}
+
+test('dropping a photo changes the params and the image, and the colours follow the photo', async ({ page }) => {
+  await openApp(page);
+  const before = await page.evaluate(() => window.proctex.getParams());
+  const photo = path.join(ROOT, '..', 'shared', 'photos', 'skimage_grass_512.png');
+  const fallback = path.join(ROOT, 'www', 'samples', 'skimage_grass_512.png');
+  await dropFile(page, fs.existsSync(photo) ? photo : fallback, 'drop');
+  const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(JSON.stringify(after)).not.toBe(before);
+  // The rendered view's mean colour follows the grass photo's mean (within 10 code values).
+  const s = await state(page);
+  const img = await grab(page, innerSquare(s.widgets.texture, 256));
+  const stats = channelStats(img);
+  for (let c = 0; c < 3; c++) {
+    expect(Math.abs(stats[c].mean - 255 * after.colour.mean[c])).toBeLessThan(10);
+  }
+});
+
+test('pasting an image from the clipboard analyses it', async ({ page }) => {
+  await openApp(page);
+  await dropFile(page, path.join(ROOT, 'www', 'samples', 'stk_blackrock_256.png'), 'paste');
+  expect((await state(page)).error).toBeNull();
+});

@@ -1,0 +1,81 @@
+// Shared helpers: waiting for the app, reading pixels of screenshots, running the CLI.
+const { expect } = require('@playwright/test');
+const { PNG } = require('pngjs');
+const { execFileSync } = require('child_process');
+const fs = require('fs');
+const os = require('os');
+const path = require('path');
+
+const ROOT = path.resolve(__dirname, '..', '..');
+const CLI = path.join(ROOT, 'target', 'release', 'proctex');
+
+async function openApp(page) {
+  page.on('console', (m) => console.log(`[page] ${m.text()}`));
+  page.on('pageerror', (e) => console.log(`[page error] ${e.message}`));
+  await page.goto('/');
+  await page.waitForFunction(() => window.proctex && window.proctex.ready, null, { timeout: 120_000 });
+  await waitFrames(page, 3);
+}
+
+async function state(page) {
+  return page.evaluate(() => window.proctex.state());
+}
+
+// Waits until the app has drawn `n` more frames (so commands and edits have taken effect).
+async function waitFrames(page, n) {
+  const start = (await state(page)).frame;
+  await page.waitForFunction((f) => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().frame >= f;
+  }, start + n, { polling: 50 });
+}
+
+// Screenshot of a rectangle [x, y, w, h] (CSS px, integers) as {width, height, data(RGBA)}.
+async function grab(page, [x, y, w, h]) {
+  const buf = await page.screenshot({ clip: { x, y, width: w, height: h } });
+  return PNG.sync.read(buf);
+}
+
+// Mean of the squared discrete Laplacian of luminance: high-frequency energy.
+function highFrequencyEnergy(img) {
+  const { width: w, height: h, data } = img;
+  const lum = (x, y) => {
+    const i = (y * w + x) * 4;
+    return 0.299 * data[i] + 0.587 * data[i + 1] + 0.114 * data[i + 2];
+  };
+  let s = 0, n = 0;
+  for (let y = 1; y < h - 1; y++) {
+    for (let x = 1; x < w - 1; x++) {
+      const l = 4 * lum(x, y) - lum(x - 1, y) - lum(x + 1, y) - lum(x, y - 1) - lum(x, y + 1);
+      s += l * l; n++;
+    }
+  }
+  return s / n;
+}
+
+function channelStats(img) {
+  const { data } = img;
+  const n = data.length / 4;
+  const mean = [0, 0, 0], sq = [0, 0, 0];
+  for (let i = 0; i < n; i++) {
+    for (let c = 0; c < 3; c++) { const v = data[i * 4 + c]; mean[c] += v; sq[c] += v * v; }
+  }
+  return mean.map((m, c) => ({ mean: m / n, sd: Math.sqrt(Math.max(0, sq[c] / n - (m / n) ** 2)) }));
+}
+
+function tmpFile(name) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'proctex-e2e-'));
+  return path.join(dir, name);
+}
+
+// Renders params with the CPU reference renderer; returns the PNG.
+function cliRender(paramsJson, { width, height, origin, pixelSize }) {
+  const params = tmpFile('params.json');
+  fs.writeFileSync(params, paramsJson);
+  const out = tmpFile('cpu.png');
+  execFileSync(CLI, ['render', params, '-o', out, '--width', String(width), '--height', String(height),
+    '--origin', `${origin[0]},${origin[1]}`, '--pixel-size', String(pixelSize)]);
+  return PNG.sync.read(fs.readFileSync(out));
+}
+
+module.exports = { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, ROOT };
