@@ -6,7 +6,7 @@ const MAX_BANDS: u32 = 12u;
 const MAX_KNOTS: u32 = 33u;
 
 struct Params {
-    // mean RGB, unused
+    // mean RGB, contrast
     mean: vec4<f32>,
     // rows: principal axes
     basis: array<vec4<f32>, 3>,

@@ -31,3 +31,9 @@ fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let log2_fp = log2(view.pixel_size * params.transform.x);
     return vec4<f32>(shade(world, log2_fp), 1.0);
 }
+
+// The trivial shader: the mean colour. Benchmarks use its frame time as the baseline.
+@fragment
+fn fs_flat(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    return vec4<f32>(params.mean.xyz, 1.0);
+}

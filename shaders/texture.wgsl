@@ -46,7 +46,8 @@ fn shade(world: vec3<f32>, log2_fp: f32) -> vec3<f32> {
         } else {
             v = g;
         }
-        rgb += v * params.basis[c].xyz;
+        let cv = params.mean.w * v;
+        rgb += cv * params.basis[c].xyz;
     }
     return rgb;
 }

@@ -235,7 +235,11 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
             scale: 1.0,
             rotation_deg: 0.0,
         },
-        colour: Colour { mean, basis },
+        colour: Colour {
+            mean,
+            basis,
+            contrast: 1.0,
+        },
         model: Model::Noise(NoiseModel {
             weights,
             histogram: Histogram {

@@ -16,6 +16,7 @@ pub mod noise;
 pub mod params;
 pub mod render;
 pub mod rng;
+pub mod solid;
 pub mod spectrum;
 
 pub use error::{Error, Result};

@@ -50,7 +50,8 @@ pub struct Transform {
     pub rotation_deg: f32,
 }
 
-/// Colour: `rgb = mean + Σ_k v_k · basis[k]`, where `v_k` are the decorrelated channels.
+/// Colour: `rgb = mean + contrast · Σ_k v_k · basis[k]`, where `v_k` are the decorrelated
+/// channels.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Colour {
@@ -58,7 +59,18 @@ pub struct Colour {
     pub mean: [f32; 3],
     /// Rows are the principal axes (unit, orthogonal, determinant +1).
     pub basis: [[f32; 3]; 3],
+    /// Scales the variation about the mean (1 = as analysed; 0 = flat mean colour). An artist's
+    /// control, not in Lagae's model; absent in older documents, which read as 1.
+    #[serde(default = "unit_contrast")]
+    pub contrast: f32,
 }
+
+fn unit_contrast() -> f32 {
+    1.0
+}
+
+/// Largest allowed contrast.
+pub const MAX_CONTRAST: f32 = 4.0;
 
 /// The texture model.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -169,6 +181,7 @@ impl Params {
             -3600.0,
             3600.0,
         )?;
+        check_range("colour.contrast", self.colour.contrast, 0.0, MAX_CONTRAST)?;
         for c in 0..3 {
             check_range(&format!("colour.mean[{c}]"), self.colour.mean[c], 0.0, 1.0)?;
             for k in 0..3 {

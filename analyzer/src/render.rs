@@ -28,6 +28,8 @@ pub struct Prepared {
     pub histogram: bool,
     /// Mean RGB.
     pub mean: [f32; 3],
+    /// Contrast about the mean.
+    pub contrast: f32,
     /// Rows: principal axes.
     pub basis: [[f32; 3]; 3],
     /// Per channel band weights, zero past `bands`.
@@ -57,6 +59,7 @@ impl Prepared {
             solid: params.solid,
             histogram: model.histogram.enabled,
             mean: params.colour.mean,
+            contrast: params.colour.contrast,
             basis: params.colour.basis,
             weights: [[0.0; MAX_BANDS]; 3],
             offsets: [[[0.0; 3]; MAX_BANDS]; 3],
@@ -88,7 +91,7 @@ impl Prepared {
     pub const UNIFORM_SIZE: usize = 16 * (7 + MAX_BANDS + 3 * MAX_BANDS + 2 * MAX_KNOTS);
 
     /// The GPU uniform block, little-endian, laid out as `struct Params` in
-    /// `shaders/params.wgsl` (every field a vec4): mean, basis rows, (1/scale, cos, sin),
+    /// `shaders/params.wgsl` (every field a vec4): (mean, contrast), basis rows, (1/scale, cos, sin),
     /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[channel·12 + band],
     /// knots[k], tangents[k].
     pub fn uniform_bytes(&self) -> Vec<u8> {
@@ -97,7 +100,7 @@ impl Prepared {
             v.iter()
                 .for_each(|x| out.extend_from_slice(&x.to_le_bytes()))
         };
-        f4([self.mean[0], self.mean[1], self.mean[2], 0.0]);
+        f4([self.mean[0], self.mean[1], self.mean[2], self.contrast]);
         for row in self.basis {
             f4([row[0], row[1], row[2], 0.0]);
         }
@@ -237,8 +240,9 @@ pub fn shade(prep: &Prepared, tile: &Tile, world: [f32; 3], log2_fp: f32) -> [f3
         } else {
             g
         };
+        let cv = prep.contrast * v;
         for i in 0..3 {
-            rgb[i] += v * prep.basis[c][i];
+            rgb[i] += cv * prep.basis[c][i];
         }
     }
     rgb
@@ -350,6 +354,16 @@ pub fn render_prepared(
         width,
         height,
         pixels,
+    }
+}
+
+/// The mean colour everywhere: the twin of `fs_flat` in `shaders/plane.wgsl`, the trivial shader
+/// that benchmarks use as the baseline frame time.
+pub fn render_flat(params: &Params, width: u32, height: u32) -> Image {
+    Image {
+        width,
+        height,
+        pixels: vec![params.colour.mean; width as usize * height as usize],
     }
 }
 

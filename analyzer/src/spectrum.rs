@@ -393,6 +393,7 @@ pub fn measure_leakage(size: usize, seeds: &[u32]) -> Vec<Vec<f64>> {
                 colour: Colour {
                     mean: [0.5; 3],
                     basis: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                    contrast: 1.0,
                 },
                 model: Model::Noise(NoiseModel {
                     weights: [unit, vec![0.0; nb], vec![0.0; nb]],

@@ -2,18 +2,22 @@
 
 /// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
 /// the same name, except for the ones listed in `RENAMED`.
-const TWIN_FILES: [(&str, &str); 4] = [
+const TWIN_FILES: [(&str, &str); 5] = [
     ("noise.wgsl", "analyzer/src/noise.rs"),
     ("histogram.wgsl", "analyzer/src/histogram.rs"),
     ("texture.wgsl", "analyzer/src/render.rs"),
     ("plane.wgsl", "analyzer/src/render.rs"),
+    ("solid.wgsl", "analyzer/src/solid.rs"),
 ];
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 2] = [
+const RENAMED: [(&str, &str); 5] = [
     ("vs_main", "render_prepared"),
     ("fs_main", "render_prepared"),
+    ("fs_flat", "render_flat"),
+    ("vs_solid", "render_solid"),
+    ("fs_solid", "render_solid"),
 ];
 
 fn wgsl_functions(src: &str) -> Vec<String> {

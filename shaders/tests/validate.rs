@@ -106,3 +106,26 @@ fn uniform_layout_matches_rust() {
     assert_eq!(constant("MAX_KNOTS"), MAX_KNOTS.to_string());
     assert_eq!(constant("KNOT_Z").parse::<f32>().unwrap(), KNOT_Z);
 }
+
+#[test]
+fn solid_view_uniform_matches_rust() {
+    let src = proctex_shaders::solid_shader();
+    let module = parse("solid", &src);
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).unwrap();
+    let (handle, _) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("SolidView"))
+        .expect("struct SolidView");
+    assert_eq!(
+        layouter[handle].size as usize,
+        proctex::solid::SolidView::UNIFORM_SIZE
+    );
+    let background = src
+        .lines()
+        .find(|l| l.starts_with("const BACKGROUND"))
+        .expect("const BACKGROUND");
+    let want = proctex::solid::BACKGROUND;
+    assert!(background.contains(&format!("{:?}, {:?}, {:?}", want[0], want[1], want[2])));
+}

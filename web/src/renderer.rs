@@ -7,6 +7,7 @@
 
 use proctex::params::Params;
 use proctex::render::{Prepared, View, tile_for};
+use proctex::solid::SolidView;
 
 /// Size of the view uniform (`struct View` in `shaders/plane.wgsl`).
 pub const VIEW_UNIFORM_SIZE: usize = 32;
@@ -38,12 +39,27 @@ struct TileKey {
     solid: bool,
 }
 
+/// Which shader a draw uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    /// The 2D plane view (`plane.wgsl`, `fs_main`).
+    Plane,
+    /// The mean colour (`plane.wgsl`, `fs_flat`): the benchmarks' baseline.
+    Flat,
+    /// The sphere or cube of the solid view (`solid.wgsl`).
+    Solid,
+}
+
 /// Everything needed to draw the texture into a render pass.
 #[derive(Debug)]
 pub struct TextureRenderer {
     pipeline: wgpu::RenderPipeline,
+    flat_pipeline: wgpu::RenderPipeline,
+    solid_pipeline: wgpu::RenderPipeline,
     params_buffer: wgpu::Buffer,
     view_buffer: wgpu::Buffer,
+    solid_buffer: wgpu::Buffer,
+    solid_group: wgpu::BindGroup,
     params_layout: wgpu::BindGroupLayout,
     params_group: Option<wgpu::BindGroup>,
     view_group: wgpu::BindGroup,
@@ -101,6 +117,10 @@ impl TextureRenderer {
             label: Some("proctex plane"),
             source: wgpu::ShaderSource::Wgsl(proctex_shaders::plane_shader().into()),
         });
+        let solid_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("proctex solid"),
+            source: wgpu::ShaderSource::Wgsl(proctex_shaders::solid_shader().into()),
+        });
         let tile_entry = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
             binding,
             visibility: wgpu::ShaderStages::FRAGMENT,
@@ -138,31 +158,36 @@ impl TextureRenderer {
             bind_group_layouts: &[Some(&params_layout), Some(&view_layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("proctex plane"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let make = |module: &wgpu::ShaderModule, vs: &str, fs: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(fs),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: None,
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let pipeline = make(&module, "vs_main", "fs_main");
+        let flat_pipeline = make(&module, "vs_main", "fs_flat");
+        let solid_pipeline = make(&solid_module, "vs_solid", "fs_solid");
         let uniform = |label, size| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -181,10 +206,23 @@ impl TextureRenderer {
                 resource: view_buffer.as_entire_binding(),
             }],
         });
+        let solid_buffer = uniform("proctex solid view", SolidView::UNIFORM_SIZE as u64);
+        let solid_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("proctex solid view"),
+            layout: &view_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: solid_buffer.as_entire_binding(),
+            }],
+        });
         TextureRenderer {
             pipeline,
+            flat_pipeline,
+            solid_pipeline,
             params_buffer,
             view_buffer,
+            solid_buffer,
+            solid_group,
             params_layout,
             params_group: None,
             view_group,
@@ -290,14 +328,30 @@ impl TextureRenderer {
         queue.write_buffer(&self.view_buffer, 0, &view_bytes(view, frame_offset));
     }
 
-    /// Draws the full-screen triangle; call after [`TextureRenderer::set_params`].
+    /// Sets the solid view's camera and viewport (one 96-byte write).
+    pub fn set_solid_view(&self, queue: &wgpu::Queue, view: &SolidView) {
+        queue.write_buffer(&self.solid_buffer, 0, &view.uniform_bytes());
+    }
+
+    /// Draws the plane view; call after [`TextureRenderer::set_params`].
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.draw_pass(pass, Pass::Plane);
+    }
+
+    /// Draws the full-screen triangle with the shader of `which`. [`Pass::Solid`] needs params
+    /// with `solid` set (3D tiles) and [`TextureRenderer::set_solid_view`].
+    pub fn draw_pass(&self, pass: &mut wgpu::RenderPass<'_>, which: Pass) {
         let Some(params_group) = &self.params_group else {
             return;
         };
-        pass.set_pipeline(&self.pipeline);
+        let (pipeline, group) = match which {
+            Pass::Plane => (&self.pipeline, &self.view_group),
+            Pass::Flat => (&self.flat_pipeline, &self.view_group),
+            Pass::Solid => (&self.solid_pipeline, &self.solid_group),
+        };
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, params_group, &[]);
-        pass.set_bind_group(1, &self.view_group, &[]);
+        pass.set_bind_group(1, group, &[]);
         pass.draw(0..3, 0..1);
     }
 }

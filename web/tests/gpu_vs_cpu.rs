@@ -10,8 +10,9 @@
 
 use proctex::analyze::{Options, analyze_bytes};
 use proctex::params::Params;
-use proctex::render::{View, render};
-use proctex_web::renderer::TextureRenderer;
+use proctex::render::{View, render, render_flat};
+use proctex::solid::{Orbit, Shape, SolidView, render_solid};
+use proctex_web::renderer::{Pass, TextureRenderer};
 
 struct Gpu {
     device: wgpu::Device,
@@ -50,7 +51,14 @@ fn gpu() -> Gpu {
 }
 
 /// Renders `params` with the GPU pipeline into a `w × h` rgba8unorm texture; returns RGB8.
-fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, view: &View) -> Vec<u8> {
+/// What a GPU render draws.
+enum What {
+    Plane(View),
+    Flat,
+    Solid(Orbit),
+}
+
+fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, what: &What) -> Vec<u8> {
     let format = wgpu::TextureFormat::Rgba8Unorm;
     let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("target"),
@@ -67,8 +75,27 @@ fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, view: &View) -> Vec<u8
         view_formats: &[],
     });
     let mut renderer = TextureRenderer::new(&gpu.device, format);
-    renderer.set_params(&gpu.device, &gpu.queue, params);
-    renderer.set_view(&gpu.queue, view, [0.0, 0.0]);
+    let pass_kind = match what {
+        What::Plane(view) => {
+            renderer.set_params(&gpu.device, &gpu.queue, params);
+            renderer.set_view(&gpu.queue, view, [0.0, 0.0]);
+            Pass::Plane
+        }
+        What::Flat => {
+            renderer.set_params(&gpu.device, &gpu.queue, params);
+            Pass::Flat
+        }
+        What::Solid(orbit) => {
+            let mut solid = params.clone();
+            solid.solid = true;
+            renderer.set_params(&gpu.device, &gpu.queue, &solid);
+            renderer.set_solid_view(
+                &gpu.queue,
+                &SolidView::new(orbit, [w as f32, h as f32], [0.0, 0.0]),
+            );
+            Pass::Solid
+        }
+    };
     let row = (w * 4).div_ceil(256) * 256;
     let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
@@ -97,7 +124,7 @@ fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, view: &View) -> Vec<u8
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        renderer.draw(&mut pass);
+        renderer.draw_pass(&mut pass, pass_kind);
     }
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo {
@@ -146,7 +173,7 @@ fn sample_params(name: &str) -> Params {
 
 fn compare(gpu: &Gpu, what: &str, params: &Params, w: u32, h: u32, view: &View) {
     let cpu = render(params, w, h, view).to_rgb8();
-    let gpu_rgb = render_gpu(gpu, params, w, h, view);
+    let gpu_rgb = render_gpu(gpu, params, w, h, &What::Plane(*view));
     let diffs: Vec<u8> = cpu
         .iter()
         .zip(&gpu_rgb)
@@ -190,12 +217,20 @@ fn gpu_matches_cpu_reference() {
     let mut turned = rock.clone();
     turned.transform.rotation_deg = 33.0;
     turned.transform.scale = 1.7;
+    turned.colour.contrast = 1.6;
     let view = View {
         origin: [-311.5, 97.25],
         pixel_size: 5.6,
         z: 0.0,
     };
-    compare(&gpu, "rock, rotated + minified", &turned, 160, 160, &view);
+    compare(
+        &gpu,
+        "rock, rotated + minified, contrast 1.6",
+        &turned,
+        160,
+        160,
+        &view,
+    );
 
     // A solid-texture slice.
     let mut solid = sample_params("skimage_grass_512.png");
@@ -205,4 +240,42 @@ fn gpu_matches_cpu_reference() {
         ..View::default()
     };
     compare(&gpu, "grass, solid slice z = 41.3", &solid, 128, 128, &view);
+}
+
+#[test]
+fn solid_view_and_flat_baseline_match_cpu() {
+    let gpu = gpu();
+    let rock = sample_params("stk_rock_mountain_512.png");
+    for (what, shape) in [("sphere", Shape::Sphere), ("cube", Shape::Cube)] {
+        let orbit = Orbit {
+            shape,
+            yaw_deg: 20.0,
+            pitch_deg: 30.0,
+            ..Orbit::default()
+        };
+        let (w, h) = (160, 120);
+        let cpu = render_solid(&rock, &orbit, w, h).to_rgb8();
+        let gpu_rgb = render_gpu(&gpu, &rock, w, h, &What::Solid(orbit));
+        let diffs: Vec<u8> = cpu
+            .iter()
+            .zip(&gpu_rgb)
+            .map(|(a, b)| a.abs_diff(*b))
+            .collect();
+        let mae = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
+        // Silhouette pixels may fall either side of the edge in f32; count the big ones.
+        let big = diffs.iter().filter(|&&d| d > 3).count() as f64 / diffs.len() as f64;
+        println!(
+            "rock, solid {what:<30} {w}×{h} on {}: mean |GPU − CPU| = {mae:.4}/255, {:.3} % of values > 3/255",
+            gpu.adapter_name,
+            big * 100.0
+        );
+        assert!(mae <= 0.25 && big <= 0.002, "{what}: mean {mae}, {big} big");
+        // The object covers a good part of the view, textured and lit.
+        let bg = proctex::solid::BACKGROUND.map(|v| (v * 255.0).round() as u8);
+        let covered = cpu.chunks_exact(3).filter(|p| *p != bg).count() as f64 / (w * h) as f64;
+        assert!(covered > 0.2, "{what}: object covers {covered}");
+    }
+    let flat = render_gpu(&gpu, &rock, 64, 32, &What::Flat);
+    let cpu = render_flat(&rock, 64, 32).to_rgb8();
+    assert_eq!(flat, cpu, "flat baseline");
 }

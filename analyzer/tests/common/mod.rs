@@ -40,6 +40,7 @@ pub fn noise_params(weights: [Vec<f32>; 3], basis: [[f32; 3]; 3], seed: u32) -> 
         colour: Colour {
             mean: [0.5, 0.5, 0.5],
             basis,
+            contrast: 1.0,
         },
         model: Model::Noise(NoiseModel {
             weights,

@@ -1,0 +1,215 @@
+//! The work the page's Web Worker does (see `www/worker.js`): analysing a photo (or a crop of
+//! it), the model's statistics for the plots, and the CPU preview for browsers without WebGPU.
+//!
+//! Plain Rust over the analyzer, with no browser types, so that native tests run it. The
+//! worker calls it through the wasm-bindgen functions in `web.rs`; results travel to the UI
+//! thread as JSON.
+
+use proctex::analyze::{Options, analyze_photo};
+use proctex::evaluate::radial_spectrum;
+use proctex::input::Photo;
+use proctex::params::Params;
+use proctex::render::{View, render};
+use serde::{Deserialize, Serialize};
+
+/// Bins of the channel histograms in the plots.
+pub const HIST_BINS: usize = 64;
+/// Side of the CPU render the model statistics are measured on (texel resolution).
+pub const STATS_SIZE: u32 = 256;
+
+/// Statistics of an image for the plots: radially averaged luminance power and RGB histograms.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ImageStats {
+    /// Power per quarter-octave ring, finest first (see `evaluate::radial_spectrum`); ring `k`
+    /// ends at `2^−(1 + k/4)` cycles per texel.
+    pub spectrum: Vec<f64>,
+    /// Per RGB channel, [`HIST_BINS`] densities over `[0, 1]` (each sums to 1).
+    pub histograms: [Vec<f64>; 3],
+}
+
+/// What the worker sends back after an analysis.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Report {
+    /// The analysed params.
+    pub params: Params,
+    /// The photo region as analysed (after reduction).
+    pub photo: ImageStats,
+    /// The analysed params rendered at texel resolution.
+    pub model: ImageStats,
+}
+
+/// Statistics of a photo.
+pub fn image_stats(p: &Photo) -> ImageStats {
+    let mut histograms: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; HIST_BINS]);
+    for px in &p.pixels {
+        for c in 0..3 {
+            let b = ((px[c].clamp(0.0, 1.0) * HIST_BINS as f32) as usize).min(HIST_BINS - 1);
+            histograms[c][b] += 1.0;
+        }
+    }
+    let n = p.pixels.len().max(1) as f64;
+    for h in &mut histograms {
+        h.iter_mut().for_each(|v| *v /= n);
+    }
+    ImageStats {
+        spectrum: radial_spectrum(p),
+        histograms,
+    }
+}
+
+/// Statistics of the model: a `STATS_SIZE²` CPU render at one texel per pixel.
+pub fn model_stats(params: &Params) -> ImageStats {
+    let view = View {
+        origin: [0.0, 0.0],
+        pixel_size: params.transform.scale,
+        z: 0.0,
+    };
+    image_stats(&render(params, STATS_SIZE, STATS_SIZE, &view).to_photo())
+}
+
+/// Analyses `crop` (photo pixels; `None`: all) of an RGBA image with the default options and
+/// the given seed. Only the crop is converted to floating point, so a 12-megapixel photo with a
+/// small crop costs little more than the crop.
+pub fn analyze_rgba(
+    rgba: &[u8],
+    width: u32,
+    height: u32,
+    crop: Option<[u32; 4]>,
+    seed: u32,
+) -> proctex::error::Result<Report> {
+    let expected = width as usize * height as usize * 4;
+    if rgba.len() != expected {
+        return Err(proctex::error::Error::Decode(format!(
+            "expected {expected} bytes of RGBA for {width}×{height}, got {}",
+            rgba.len()
+        )));
+    }
+    let [x, y, w, h] = crop.unwrap_or([0, 0, width, height]);
+    let inside = w > 0
+        && h > 0
+        && x.checked_add(w).is_some_and(|r| r <= width)
+        && y.checked_add(h).is_some_and(|b| b <= height);
+    if !inside {
+        return Err(proctex::error::Error::Crop(format!(
+            "{x},{y},{w},{h} reaches outside the {width}×{height} image"
+        )));
+    }
+    let mut region = Vec::with_capacity(w as usize * h as usize * 4);
+    for row in y..y + h {
+        let start = (row as usize * width as usize + x as usize) * 4;
+        region.extend_from_slice(&rgba[start..start + w as usize * 4]);
+    }
+    let photo = Photo::from_rgba8(w, h, &region)?;
+    let opts = Options {
+        seed,
+        ..Options::default()
+    };
+    let analysis = analyze_photo(&photo, &opts)?;
+    let mut params = analysis.params;
+    if let Some(s) = params.source.as_mut() {
+        s.width = width;
+        s.height = height;
+        s.crop = crop;
+    }
+    let reduced = photo.reduce_to(opts.size);
+    Ok(Report {
+        photo: image_stats(&reduced),
+        model: model_stats(&params),
+        params,
+    })
+}
+
+/// The CPU reference render of `params` as RGBA8 (the preview without WebGPU).
+pub fn preview_rgba(params: &Params, width: u32, height: u32) -> Vec<u8> {
+    let img = render(params, width, height, &View::default());
+    img.to_rgb8()
+        .chunks_exact(3)
+        .flat_map(|p| [p[0], p[1], p[2], 255])
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proctex::input::Crop;
+
+    fn sample() -> (Vec<u8>, u32, u32) {
+        let path = format!(
+            "{}/../www/samples/stk_rock_mountain_512.png",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let p = Photo::decode(&std::fs::read(path).unwrap()).unwrap();
+        let rgba = p
+            .pixels
+            .iter()
+            .flat_map(|c| {
+                [
+                    (c[0] * 255.0).round() as u8,
+                    (c[1] * 255.0).round() as u8,
+                    (c[2] * 255.0).round() as u8,
+                    255,
+                ]
+            })
+            .collect();
+        (rgba, p.width, p.height)
+    }
+
+    #[test]
+    fn crop_analysis_equals_the_cli_crop() {
+        let (rgba, w, h) = sample();
+        let report = analyze_rgba(&rgba, w, h, Some([40, 60, 300, 200]), 7).unwrap();
+        let photo = Photo::from_rgba8(w, h, &rgba).unwrap();
+        let opts = Options {
+            seed: 7,
+            crop: Some(Crop {
+                x: 40,
+                y: 60,
+                w: 300,
+                h: 200,
+            }),
+            ..Options::default()
+        };
+        let cli = analyze_photo(&photo, &opts).unwrap().params;
+        assert_eq!(report.params, cli);
+        assert_eq!(report.photo.spectrum.len(), report.model.spectrum.len());
+        for hist in report
+            .photo
+            .histograms
+            .iter()
+            .chain(&report.model.histograms)
+        {
+            assert!((hist.iter().sum::<f64>() - 1.0).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn bad_crops_and_buffers_are_errors() {
+        let (rgba, w, h) = sample();
+        assert!(analyze_rgba(&rgba, w, h, Some([500, 0, 100, 100]), 1).is_err());
+        assert!(analyze_rgba(&rgba, w, h, Some([0, 0, 0, 100]), 1).is_err());
+        assert!(analyze_rgba(&rgba[4..], w, h, None, 1).is_err());
+        // Too small to analyse: a clear error, not a panic.
+        let e = analyze_rgba(&rgba, w, h, Some([0, 0, 8, 8]), 1).unwrap_err();
+        assert!(e.to_string().contains("8"), "{e}");
+    }
+
+    #[test]
+    fn model_statistics_follow_the_photo() {
+        let (rgba, w, h) = sample();
+        let r = analyze_rgba(&rgba, w, h, None, 1).unwrap();
+        // Spectra within 3 dB per ring over the rings the model covers.
+        for (k, (a, b)) in r
+            .photo
+            .spectrum
+            .iter()
+            .zip(&r.model.spectrum)
+            .enumerate()
+            .take(16)
+        {
+            let db = 10.0 * (a / b).log10();
+            assert!(db.abs() < 3.0, "ring {k}: photo {a:e}, model {b:e}");
+        }
+        let preview = preview_rgba(&r.params, 32, 16);
+        assert_eq!(preview.len(), 32 * 16 * 4);
+    }
+}
