@@ -21,6 +21,8 @@ module.exports = defineConfig({
         '--use-vulkan=swiftshader', '--use-gl=angle', '--use-angle=swiftshader',
         '--disable-quic', '--no-first-run', '--disable-background-networking',
         '--disable-component-update', '--disable-sync',
+        // A fake camera (a test pattern) that needs no permission prompt.
+        '--use-fake-device-for-media-stream', '--use-fake-ui-for-media-stream',
       ],
     },
   },

@@ -1,5 +1,6 @@
-// Loader: starts the wasm app on the canvas, loads the built-in sample photo, and exposes the
-// automation API on window.proctex (see README.md in this folder).
+// Loader: starts the wasm app on the canvas, runs the analysis worker, wires the photo inputs
+// (drop, Open…, paste, camera), and exposes the automation API on window.proctex (see
+// README.md in this folder).
 import init, * as wasm from './pkg/proctex_web.js';
 
 const SAMPLES = [
@@ -14,7 +15,7 @@ const DEFAULT_SAMPLE = SAMPLES[0];
 
 const message = document.getElementById('message');
 function show(text, isError) {
-  message.textContent = text;
+  message.querySelector('.text').textContent = text;
   message.className = isError ? 'error' : '';
   message.style.display = 'block';
 }
@@ -25,41 +26,103 @@ async function fetchBytes(url) {
   return new Uint8Array(await r.arrayBuffer());
 }
 
-// Decodes an image file with the browser (natively, off the main thread, EXIF orientation
-// applied) and hands the RGBA pixels to the analysis. A file the browser cannot decode is
-// reported in the app, which keeps its current texture.
-async function loadImage(bytes, name = 'image') {
-  let bitmap;
-  try {
-    bitmap = await createImageBitmap(new Blob([bytes]), { imageOrientation: 'from-image' });
-  } catch (e) {
-    wasm.reportError(`${name}: cannot read the image: the file is empty, truncated, corrupt ` +
-      'or not an image format the browser decodes');
-    return false;
+// ---- The worker: one job at a time; replies carry the job id. ----
+const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+let nextId = 1;
+const pending = new Map();
+let photoJob = 0; // the photo/crop job whose result the app should show
+worker.onmessage = (e) => {
+  const m = e.data;
+  if (m.type === 'progress') {
+    if (m.id === photoJob) wasm.analysisProgress(null, m.stage);
+    return;
   }
-  const { width, height } = bitmap;
-  const canvas = new OffscreenCanvas(width, height);
-  const ctx = canvas.getContext('2d', { willReadFrequently: true });
-  ctx.drawImage(bitmap, 0, 0);
-  bitmap.close();
-  const rgba = ctx.getImageData(0, 0, width, height).data;
-  wasm.loadPixels(new Uint8Array(rgba.buffer), width, height, name);
-  return true;
+  const resolve = pending.get(m.id);
+  pending.delete(m.id);
+  if (resolve) resolve(m);
+};
+worker.onerror = (e) => reportError(`The analysis worker failed: ${e.message}`);
+function job(msg, transfer = []) {
+  const id = nextId++;
+  return [id, new Promise((resolve) => {
+    pending.set(id, resolve);
+    worker.postMessage({ ...msg, id }, transfer);
+  })];
 }
 
-window.proctex = {
-  ready: false,
-  samples: SAMPLES,
-  loadImage,
-  loadSample: async (name) => loadImage(await fetchBytes(`samples/${name}`), name),
-  getParams: () => wasm.getParams() ?? null,
-  setParams: (json) => wasm.setParams(typeof json === 'string' ? json : JSON.stringify(json)),
-  setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
-  state: () => JSON.parse(wasm.state()),
-  requestRepaint: () => wasm.requestRepaint(),
-};
+let appRunning = false;
+function reportError(text) {
+  if (appRunning) wasm.reportError(text);
+  else show(text, true);
+}
 
-// Photo in: drag-and-drop anywhere on the page, or paste an image from the clipboard.
+// A new photo (file bytes or camera pixels) → worker → app. Resolves true when analysed.
+async function analysePhoto(msg, transfer, name) {
+  const [id, reply] = job(msg, transfer);
+  photoJob = id;
+  if (appRunning) wasm.analysisProgress(name, 'Decoding');
+  const m = await reply;
+  if (m.id !== photoJob) return false; // superseded by a later photo
+  if (m.type === 'error') {
+    reportError(m.message);
+    return false;
+  }
+  lastReport = m.report;
+  if (appRunning) {
+    wasm.analysisDone(m.report, m.name, m.ms, m.preview, m.pw, m.ph, m.width, m.height);
+  }
+  lastTimings = { ms: m.ms, decodeMs: m.decodeMs };
+  return true;
+}
+let lastReport = null;
+let lastTimings = null;
+
+async function loadImage(bytes, name = 'image') {
+  const copy = new Uint8Array(bytes); // transferable, whatever the caller passed
+  return analysePhoto({ type: 'open', bytes: copy, name }, [copy.buffer], name);
+}
+
+async function loadPixels(rgba, width, height, name) {
+  const copy = new Uint8Array(rgba);
+  return analysePhoto({ type: 'pixels', rgba: copy, width, height, name }, [copy.buffer], name);
+}
+
+// Crop re-analysis: requests while one runs are coalesced into the latest.
+let cropBusy = false;
+let cropNext = null;
+async function pumpCrop() {
+  if (cropBusy || !cropNext) return;
+  cropBusy = true;
+  const c = cropNext;
+  cropNext = null;
+  const [id, reply] = job({ type: 'crop', crop: c.crop, seed: c.seed });
+  photoJob = id;
+  wasm.analysisProgress(null, 'Analysing the crop');
+  const m = await reply;
+  if (m.id === photoJob) {
+    if (m.type === 'error') wasm.reportError(m.message);
+    else wasm.analysisDone(m.report, m.name, m.ms, undefined, 0, 0, 0, 0);
+  }
+  cropBusy = false;
+  pumpCrop();
+}
+
+// Model statistics for the plots, coalesced the same way.
+let statsBusy = false;
+let statsNext = null;
+async function pumpStats() {
+  if (statsBusy || !statsNext) return;
+  statsBusy = true;
+  const params = statsNext;
+  statsNext = null;
+  const [, reply] = job({ type: 'stats', params });
+  const m = await reply;
+  if (m.type === 'stats') wasm.modelStatsDone(m.params, m.stats);
+  statsBusy = false;
+  pumpStats();
+}
+
+// ---- Photo inputs ----
 function imageFileOf(items) {
   for (const item of items || []) {
     const file = item instanceof File ? item : (item.kind === 'file' ? item.getAsFile() : null);
@@ -72,6 +135,17 @@ async function loadFile(file) {
   const bytes = new Uint8Array(await file.arrayBuffer());
   return loadImage(bytes, file.name || 'pasted image');
 }
+
+const fileInput = document.createElement('input');
+fileInput.type = 'file';
+fileInput.accept = 'image/*';
+fileInput.style.display = 'none';
+document.body.appendChild(fileInput);
+fileInput.addEventListener('change', () => {
+  const f = fileInput.files && fileInput.files[0];
+  if (f) loadFile(f);
+  fileInput.value = '';
+});
 
 function installPhotoInputs() {
   // Capture phase: eframe's own canvas handlers would otherwise take the drop (and hand
@@ -91,23 +165,121 @@ function installPhotoInputs() {
   });
 }
 
+// Camera: live preview in an overlay, Capture analyses the current frame.
+const camera = document.getElementById('camera');
+const video = document.getElementById('camera_video');
+let stream = null;
+function closeCamera() {
+  if (stream) stream.getTracks().forEach((t) => t.stop());
+  stream = null;
+  video.srcObject = null;
+  camera.hidden = true;
+}
+async function openCamera() {
+  if (!navigator.mediaDevices || !navigator.mediaDevices.getUserMedia) {
+    wasm.reportError('Camera: this browser gives the page no camera access ' +
+      '(it needs a secure context: https or localhost).');
+    return;
+  }
+  try {
+    stream = await navigator.mediaDevices.getUserMedia({
+      video: { width: { ideal: 1920 }, height: { ideal: 1080 } }, audio: false,
+    });
+  } catch (e) {
+    const why = {
+      NotAllowedError: 'permission was denied',
+      NotFoundError: 'no camera was found',
+      NotReadableError: 'the camera is in use by another program',
+    }[e.name] || e.message || String(e);
+    wasm.reportError(`Camera: ${why}.`);
+    return;
+  }
+  video.srcObject = stream;
+  camera.hidden = false;
+  await video.play().catch(() => {});
+}
+async function capture() {
+  if (!stream || video.videoWidth === 0) {
+    wasm.reportError('Camera: no frame yet; wait for the preview and try again.');
+    return false;
+  }
+  const w = video.videoWidth, h = video.videoHeight;
+  const ctx = new OffscreenCanvas(w, h).getContext('2d', { willReadFrequently: true });
+  ctx.drawImage(video, 0, 0, w, h);
+  const rgba = ctx.getImageData(0, 0, w, h).data;
+  closeCamera();
+  return loadPixels(rgba, w, h, `camera ${w}×${h}`);
+}
+document.getElementById('camera_capture').addEventListener('click', () => capture());
+document.getElementById('camera_cancel').addEventListener('click', closeCamera);
+
+// What the app calls (window.proctexHost): see web/src/app.rs `host`.
+window.proctexHost = {
+  openFile: () => fileInput.click(),
+  openCamera: () => { openCamera(); },
+  loadSample: (name) => { window.proctex.loadSample(name); },
+  analyseCrop: (x, y, w, h, seed) => { cropNext = { crop: [x, y, w, h], seed }; pumpCrop(); },
+  modelStats: (params) => { statsNext = params; pumpStats(); },
+};
+
+window.proctex = {
+  ready: false,
+  samples: SAMPLES,
+  loadImage,
+  loadPixels,
+  loadSample: async (name) => loadImage(await fetchBytes(`samples/${name}`), name),
+  capture,
+  getParams: () => wasm.getParams() ?? null,
+  setParams: (json) => wasm.setParams(typeof json === 'string' ? json : JSON.stringify(json)),
+  setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
+  setViewMode: (mode) => wasm.setViewMode(mode),
+  setFlatShader: (on) => wasm.setFlatShader(on),
+  state: () => JSON.parse(wasm.state()),
+  requestRepaint: () => wasm.requestRepaint(),
+  lastTimings: () => lastTimings,
+};
+
+// Without WebGPU: say so, and show the CPU reference render of the sample's analysis instead
+// of a blank canvas.
+async function cpuFallback(reason) {
+  show(`${reason}\nProctex renders textures with WebGPU. Use a current Chrome or Edge, ` +
+    'Safari 26+, or Firefox with WebGPU enabled.\nBelow: the CPU reference rendering of the ' +
+    `sample (${DEFAULT_SAMPLE}), analysed in this page.`, true);
+  document.getElementById('proctex_canvas').style.display = 'none';
+  const ok = await window.proctex.loadSample(DEFAULT_SAMPLE);
+  if (!ok) return;
+  const params = JSON.stringify(JSON.parse(lastReport).params);
+  const size = 384;
+  const [, reply] = job({ type: 'preview', params, width: size, height: size });
+  const m = await reply;
+  if (m.type !== 'preview') { show(m.message, true); return; }
+  const canvas = document.getElementById('cpu_preview');
+  canvas.width = size; canvas.height = size;
+  canvas.getContext('2d').putImageData(
+    new ImageData(new Uint8ClampedArray(m.rgba.buffer), size, size), 0, 0);
+  canvas.hidden = false;
+  window.proctex.cpuPreview = { width: size, height: size, ms: m.ms };
+  window.proctex.ready = true;
+}
+
 async function main() {
   await init();
   if (!navigator.gpu) {
-    show('This browser has no WebGPU, which Proctex needs to render textures.\n' +
-         'Use a current Chrome, Edge or Firefox Nightly, or enable WebGPU.', true);
+    await cpuFallback('This browser has no WebGPU.');
     return;
   }
   let handle;
   try {
     handle = await wasm.start(document.getElementById('proctex_canvas'));
   } catch (e) {
-    show(`Proctex could not start: ${e}`, true);
+    await cpuFallback(`WebGPU is present but unusable here: ${e}.`);
     return;
   }
+  appRunning = true;
   setInterval(() => {
     if (handle.has_panicked()) {
-      show(`Proctex stopped on an internal error:\n${handle.panic_message() ?? ''}`, true);
+      show(`Proctex stopped on an internal error:\n${handle.panic_message() ?? ''}\n` +
+        'Reload the page to continue.', true);
     }
   }, 500);
   installPhotoInputs();

@@ -41,7 +41,7 @@ impl Default for Orbit {
         Orbit {
             yaw_deg: 35.0,
             pitch_deg: 25.0,
-            distance: 3.2,
+            distance: 4.0,
             fov_deg: 45.0,
             radius: 256.0,
             shape: Shape::Sphere,

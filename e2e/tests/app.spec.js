@@ -2,15 +2,7 @@
 const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
-const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, ROOT } = require('./helpers');
-
-// An integer-aligned square well inside the texture view.
-function innerSquare(rect, size) {
-  const [x, y, w, h] = rect;
-  const left = Math.ceil(x) + Math.floor((w - size) / 2);
-  const top = Math.ceil(y) + Math.floor((h - size) / 2);
-  return [left, top, size, size];
-}
+const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, innerSquare, ROOT } = require('./helpers');
 
 test('opens on the sample, already rendered', async ({ page }) => {
   await openApp(page);

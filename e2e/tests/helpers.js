@@ -78,4 +78,34 @@ function cliRender(paramsJson, { width, height, origin, pixelSize }) {
   return PNG.sync.read(fs.readFileSync(out));
 }
 
-module.exports = { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, ROOT };
+// An integer-aligned square well inside a widget rectangle.
+function innerSquare(rect, size) {
+  const [x, y, w, h] = rect;
+  const left = Math.ceil(x) + Math.floor((w - size) / 2);
+  const top = Math.ceil(y) + Math.floor((h - size) / 2);
+  return [left, top, size, size];
+}
+
+// A real mouse click at the centre of the app's widget `name`.
+async function clickWidget(page, name) {
+  const s = await state(page);
+  const r = s.widgets[name];
+  if (!r) throw new Error(`no widget ${name}: ${Object.keys(s.widgets).join(', ')}`);
+  await page.mouse.click(r[0] + r[2] / 2, r[1] + r[3] / 2);
+  await waitFrames(page, 2);
+}
+
+// Waits until the app has finished `n` analyses in total.
+async function waitAnalyses(page, n) {
+  await page.waitForFunction((k) => {
+    window.proctex.requestRepaint();
+    const s = window.proctex.state();
+    return s.analyses >= k && !s.busy;
+  }, n, { polling: 100, timeout: 120_000 });
+  await waitFrames(page, 2);
+}
+
+module.exports = {
+  expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender,
+  innerSquare, clickWidget, waitAnalyses, ROOT,
+};

@@ -1,32 +1,49 @@
-//! The egui application: photo → analysis → params → GPU texture, with sliders for every
-//! parameter, undo/redo, and a pan/zoom view. Compiled for the browser only.
+//! The egui application: photo → analysis (in the page's Web Worker) → params → GPU texture,
+//! with a crop rectangle on the photo, sliders for every parameter, undo/redo, plane / split /
+//! sphere / cube views and plots of the photo against the model.
 //!
 //! Edits change `Params` and nothing else; the paint callback uploads them as one uniform
-//! write. Analysis runs only when a photo (or crop) arrives.
+//! write. Analysis runs only when a photo or a crop arrives, and never on this thread: the app
+//! asks the page (`proctexHost` in `www/main.js`) and the worker's result comes back as a
+//! [`Command`].
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use eframe::egui;
 use eframe::egui_wgpu;
-use proctex::analyze::{Analysis, Options, analyze_photo};
-use proctex::input::Photo;
-use proctex::params::{Model, Params};
-use proctex::render::View;
+use proctex::params::{MAX_CONTRAST, Model, Params};
+use proctex::render::{View, period_texels};
+use proctex::solid::{Orbit, Shape, SolidView};
+use wasm_bindgen::JsValue;
 
-use crate::renderer::TextureRenderer;
+use crate::jobs::{ImageStats, Report};
+use crate::renderer::{Pass, TextureRenderer};
 
 /// Something JS asked for, applied at the start of the next frame.
 #[derive(Debug)]
 pub enum Command {
-    /// Analyse a decoded image: interleaved 8-bit RGBA (the browser decodes files).
-    LoadPixels {
-        rgba: Vec<u8>,
-        width: u32,
-        height: u32,
-        name: String,
+    /// The worker started (or moved to another stage of) an analysis.
+    Busy {
+        /// Name of the photo, or `None` for a re-analysis of the current photo's crop.
+        name: Option<String>,
+        /// What it is doing ("Decoding", "Analysing").
+        stage: String,
     },
-    /// Show an error that happened outside the app (a file the browser could not decode).
+    /// An analysis finished.
+    Analysed {
+        /// Params and plot statistics.
+        report: Box<Report>,
+        /// Photo name.
+        name: String,
+        /// Milliseconds from the request to the result (decode included).
+        ms: f64,
+        /// For a new photo: its preview (RGBA, size) and its full size.
+        preview: Option<PhotoPreview>,
+    },
+    /// Statistics of the model for these params (for the plots).
+    ModelStats(Box<(Params, ImageStats)>),
+    /// Show an error (a file that cannot be read, a denied camera, a failed analysis).
     Error(String),
     /// Replace the current params (already validated).
     SetParams(Box<Params>),
@@ -35,6 +52,68 @@ pub enum Command {
         origin: [f32; 2],
         units_per_point: f32,
     },
+    /// Switch the view (plane, split, sphere, cube).
+    SetMode(ViewMode),
+    /// Draw the plane view with the trivial shader (benchmark baseline).
+    FlatShader(bool),
+}
+
+/// A downscaled copy of the photo for the crop panel and the split view.
+#[derive(Debug)]
+pub struct PhotoPreview {
+    /// RGBA8 pixels.
+    pub rgba: Vec<u8>,
+    /// Preview size.
+    pub size: [u32; 2],
+    /// The photo's full size (crop coordinates are in these pixels).
+    pub full: [u32; 2],
+}
+
+/// What the central panel shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ViewMode {
+    /// The 2D texture, pan and zoom.
+    Plane,
+    /// The photo crop (left) beside the texture (right), same view.
+    Split,
+    /// The solid texture on a sphere.
+    Sphere,
+    /// The solid texture on a cube.
+    Cube,
+}
+
+impl ViewMode {
+    /// All modes, in toolbar order.
+    pub const ALL: [ViewMode; 4] = [
+        ViewMode::Plane,
+        ViewMode::Split,
+        ViewMode::Sphere,
+        ViewMode::Cube,
+    ];
+
+    /// Parses a mode name.
+    pub fn parse(s: &str) -> Option<ViewMode> {
+        ViewMode::ALL.into_iter().find(|m| m.name() == s)
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            ViewMode::Plane => "plane",
+            ViewMode::Split => "split",
+            ViewMode::Sphere => "sphere",
+            ViewMode::Cube => "cube",
+        }
+    }
+
+    fn label(self) -> &'static str {
+        match self {
+            ViewMode::Plane => "Plane",
+            ViewMode::Split => "Split vs photo",
+            ViewMode::Sphere => "Sphere",
+            ViewMode::Cube => "Cube",
+        }
+    }
 }
 
 /// What the app publishes for JS after every frame.
@@ -44,8 +123,16 @@ pub struct Snapshot {
     pub frame: u64,
     /// Name of the analysed photo.
     pub photo: Option<String>,
+    /// Full size of the photo.
+    pub photo_size: Option<[u32; 2]>,
+    /// Crop being analysed, photo pixels `[x, y, w, h]`.
+    pub crop: Option<[u32; 4]>,
     /// Milliseconds the last analysis took (decode included).
     pub analysis_ms: Option<f64>,
+    /// Number of analyses finished so far (photos and crops).
+    pub analyses: u64,
+    /// An analysis is running.
+    pub busy: bool,
     /// The last error shown to the user.
     pub error: Option<String>,
     /// Current params as JSON.
@@ -57,6 +144,16 @@ pub struct Snapshot {
     pub view_origin: [f32; 2],
     /// World units per CSS pixel.
     pub view_units_per_point: f32,
+    /// Plane, split, sphere or cube.
+    pub view_mode: Option<ViewMode>,
+    /// Orbit camera of the solid views: yaw, pitch (degrees), distance.
+    pub orbit: [f32; 3],
+    /// The tile-period outline is on.
+    pub period_outline: bool,
+    /// Lines of the tile-period outline drawn in the last frame.
+    pub period_lines: usize,
+    /// The plots show the model's statistics for the current params.
+    pub plots_current: bool,
     /// Undo/redo depths.
     pub undo: usize,
     /// Redo depth.
@@ -82,6 +179,28 @@ pub fn send(cmd: Command) {
     });
 }
 
+/// Calls `window.proctexHost[method](...args)` (the page's side of the app: file dialog,
+/// camera, worker jobs). Returns false when the page has no such function.
+fn host(method: &str, args: &[JsValue]) -> bool {
+    let Some(window) = web_sys::window() else {
+        return false;
+    };
+    let Ok(h) = js_sys::Reflect::get(&window, &JsValue::from_str("proctexHost")) else {
+        return false;
+    };
+    let Ok(f) = js_sys::Reflect::get(&h, &JsValue::from_str(method)) else {
+        return false;
+    };
+    let Some(f) = wasm_bindgen::JsCast::dyn_ref::<js_sys::Function>(&f) else {
+        return false;
+    };
+    let arr = js_sys::Array::new();
+    for a in args {
+        arr.push(a);
+    }
+    f.apply(&h, &arr).is_ok()
+}
+
 /// The texture view: which world rectangle the central panel shows.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct ViewState {
@@ -100,17 +219,52 @@ impl Default for ViewState {
     }
 }
 
+/// The photo being analysed.
+struct PhotoState {
+    name: String,
+    full: [u32; 2],
+    texture: egui::TextureHandle,
+    /// Region analysed, photo pixels `[x, y, w, h]`.
+    crop: [u32; 4],
+}
+
+/// What a drag on the crop panel is doing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum CropDrag {
+    Move,
+    /// Resizing from the corner opposite this fixed photo point.
+    Resize {
+        fixed: [f32; 2],
+    },
+}
+
+/// Smallest crop side, photo pixels (the analyzer's minimum).
+const MIN_CROP: u32 = proctex::input::MIN_SIDE;
+
 /// The application.
 pub struct ProctexApp {
-    photo: Option<String>,
-    analysis: Option<Analysis>,
+    photo: Option<PhotoState>,
+    /// The params of the last analysis (what "Reset to analysed" restores).
+    analysed: Option<Params>,
     params: Option<Params>,
     committed: Option<Params>,
     undo: Vec<Params>,
     redo: Vec<Params>,
     view: ViewState,
+    mode: ViewMode,
+    orbit: Orbit,
+    period_outline: bool,
+    period_lines: usize,
+    flat_shader: bool,
     error: Option<String>,
     analysis_ms: Option<f64>,
+    analyses: u64,
+    busy: Option<(String, f64)>,
+    crop_drag: Option<(CropDrag, [u32; 4], egui::Pos2)>,
+    photo_stats: Option<ImageStats>,
+    model_stats: Option<(Params, ImageStats)>,
+    stats_requested: Option<Params>,
+    last_edit_ms: f64,
     frame: u64,
     widgets: BTreeMap<String, [f32; 4]>,
 }
@@ -126,53 +280,114 @@ impl ProctexApp {
         CONTEXT.with(|c| *c.borrow_mut() = Some(cc.egui_ctx.clone()));
         ProctexApp {
             photo: None,
-            analysis: None,
+            analysed: None,
             params: None,
             committed: None,
             undo: Vec::new(),
             redo: Vec::new(),
             view: ViewState::default(),
+            mode: ViewMode::Plane,
+            orbit: Orbit::default(),
+            period_outline: false,
+            period_lines: 0,
+            flat_shader: false,
             error: None,
             analysis_ms: None,
+            analyses: 0,
+            busy: None,
+            crop_drag: None,
+            photo_stats: None,
+            model_stats: None,
+            stats_requested: None,
+            last_edit_ms: 0.0,
             frame: 0,
             widgets: BTreeMap::new(),
         }
     }
 
-    fn load(&mut self, rgba: &[u8], width: u32, height: u32, name: String) {
-        let t = now_ms();
-        let analysis = Photo::from_rgba8(width, height, rgba)
-            .and_then(|photo| analyze_photo(&photo, &Options::default()));
-        match analysis {
-            Ok(a) => {
-                self.analysis_ms = Some(now_ms() - t);
-                self.params = Some(a.params.clone());
-                self.committed = Some(a.params.clone());
-                self.undo.clear();
+    fn analysed(
+        &mut self,
+        ctx: &egui::Context,
+        report: Report,
+        name: String,
+        ms: f64,
+        preview: Option<PhotoPreview>,
+    ) {
+        self.busy = None;
+        self.analyses += 1;
+        self.analysis_ms = Some(ms);
+        self.error = None;
+        let crop = report
+            .params
+            .source
+            .as_ref()
+            .and_then(|s| s.crop)
+            .or_else(|| {
+                let s = report.params.source.as_ref()?;
+                Some([0, 0, s.width, s.height])
+            });
+        if let Some(p) = preview {
+            let image = egui::ColorImage::from_rgba_unmultiplied(
+                [p.size[0] as usize, p.size[1] as usize],
+                &p.rgba,
+            );
+            let texture = ctx.load_texture("photo", image, egui::TextureOptions::LINEAR);
+            self.photo = Some(PhotoState {
+                name: name.clone(),
+                full: p.full,
+                texture,
+                crop: crop.unwrap_or([0, 0, p.full[0], p.full[1]]),
+            });
+            self.view = ViewState::default();
+            self.undo.clear();
+            self.redo.clear();
+        } else if let Some(photo) = self.photo.as_mut() {
+            // A re-analysed crop: one undoable step.
+            if let Some(cur) = self.params.clone() {
+                self.undo.push(cur);
                 self.redo.clear();
-                self.analysis = Some(a);
-                self.photo = Some(name);
-                self.error = None;
-                self.view = ViewState::default();
             }
-            Err(e) => {
-                // Keep the previous texture; say what went wrong.
-                self.error = Some(format!("{name}: {e}"));
+            if self.crop_drag.is_none()
+                && let Some(c) = crop
+            {
+                photo.crop = c;
             }
         }
+        // A crop re-analysis keeps the user's seed (the request carried it).
+        self.params = Some(report.params.clone());
+        self.committed = Some(report.params.clone());
+        self.analysed = Some(report.params.clone());
+        self.photo_stats = Some(report.photo);
+        self.model_stats = Some((report.params.clone(), report.model));
+        self.stats_requested = Some(report.params);
     }
 
-    fn apply_commands(&mut self) {
+    fn apply_commands(&mut self, ctx: &egui::Context) {
         let cmds: Vec<Command> = COMMANDS.with(|c| std::mem::take(&mut *c.borrow_mut()));
         for cmd in cmds {
             match cmd {
-                Command::LoadPixels {
-                    rgba,
-                    width,
-                    height,
+                Command::Busy { name, stage } => {
+                    let since = self.busy.as_ref().map(|b| b.1).unwrap_or_else(now_ms);
+                    let what = match name {
+                        Some(n) => format!("{stage} {n}"),
+                        None => stage,
+                    };
+                    self.busy = Some((what, since));
+                }
+                Command::Analysed {
+                    report,
                     name,
-                } => self.load(&rgba, width, height, name),
-                Command::Error(e) => self.error = Some(e),
+                    ms,
+                    preview,
+                } => self.analysed(ctx, *report, name, ms, preview),
+                Command::ModelStats(stats) => {
+                    let (p, s) = *stats;
+                    self.model_stats = Some((p, s));
+                }
+                Command::Error(e) => {
+                    self.busy = None;
+                    self.error = Some(e);
+                }
                 Command::SetParams(p) => {
                     self.params = Some(*p);
                     self.error = None;
@@ -186,6 +401,8 @@ impl ProctexApp {
                         units_per_point,
                     }
                 }
+                Command::SetMode(m) => self.mode = m,
+                Command::FlatShader(on) => self.flat_shader = on,
             }
         }
     }
@@ -228,20 +445,331 @@ impl ProctexApp {
         );
     }
 
-    fn controls(&mut self, ui: &mut egui::Ui) {
+    /// Left panel: samples, Open…, Camera…, the photo with its crop, status, plots.
+    fn photo_panel(&mut self, ui: &mut egui::Ui) {
         ui.heading("Proctex");
-        match (&self.photo, self.analysis_ms) {
-            (Some(name), Some(ms)) => {
-                ui.label(format!("{name} — analysed in {ms:.0} ms"));
+        ui.label("Photo → procedural texture");
+        ui.separator();
+        ui.horizontal(|ui| {
+            let r = ui
+                .button("Open…")
+                .on_hover_text("Open an image file (or drop one anywhere, or paste)");
+            self.record("open", &r);
+            if r.clicked() && !host("openFile", &[]) {
+                self.error = Some("Open…: the page's file dialog is unavailable".into());
             }
-            _ => {
-                ui.label("Loading the sample photo…");
+            let r = ui
+                .button("Camera…")
+                .on_hover_text("Capture a photo with the camera");
+            self.record("camera", &r);
+            if r.clicked() && !host("openCamera", &[]) {
+                self.error = Some("Camera…: the page's camera support is unavailable".into());
             }
+        });
+        ui.label("Samples:");
+        ui.horizontal_wrapped(|ui| {
+            for (i, name) in SAMPLES.iter().enumerate() {
+                let short = name
+                    .trim_end_matches(".png")
+                    .trim_start_matches("skimage_")
+                    .trim_start_matches("stk_");
+                let selected = self.photo.as_ref().is_some_and(|p| p.name == *name);
+                let r = ui.selectable_label(selected, short);
+                self.record(format!("sample.{i}"), &r);
+                if r.clicked() {
+                    host("loadSample", &[JsValue::from_str(name)]);
+                }
+            }
+        });
+        ui.separator();
+        self.crop_widget(ui);
+        if let Some((what, since)) = self.busy.clone() {
+            let elapsed = now_ms() - since;
+            // Anything that takes longer than ~200 ms gets a visible progress indicator.
+            if elapsed > 200.0 {
+                ui.horizontal(|ui| {
+                    let r = ui.add(egui::Spinner::new());
+                    ui.label(format!("{what}… {:.1} s", elapsed / 1000.0));
+                    self.record("progress", &r);
+                });
+            }
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(100));
+        } else if let (Some(photo), Some(ms)) = (&self.photo, self.analysis_ms) {
+            let r = ui.label(format!("{} — analysed in {ms:.0} ms", photo.name));
+            self.record("status", &r);
+        } else {
+            ui.label("Loading the sample photo…");
         }
-        if let Some(err) = &self.error {
-            let r = ui.colored_label(egui::Color32::from_rgb(230, 80, 60), err);
+        if let Some(err) = self.error.clone() {
+            let r = ui.colored_label(egui::Color32::from_rgb(240, 90, 70), err);
             self.record("error", &r);
+            if ui.small_button("Dismiss").clicked() {
+                self.error = None;
+            }
         }
+        ui.separator();
+        self.plots(ui);
+    }
+
+    /// The photo with the crop rectangle: drag inside to move it, at a corner to resize, outside
+    /// to draw a new one. Every change asks for a re-analysis (the page coalesces requests while
+    /// the worker is busy, so dragging re-analyses as fast as the worker can).
+    fn crop_widget(&mut self, ui: &mut egui::Ui) {
+        let Some(photo) = self.photo.as_ref() else {
+            return;
+        };
+        let (full, texture, old) = (photo.full, photo.texture.id(), photo.crop);
+        let [fw, fh] = full.map(|v| v as f32);
+        let k = (ui.available_width() / fw).min(200.0 / fh);
+        let (rect, response) =
+            ui.allocate_exact_size(egui::vec2(fw * k, fh * k), egui::Sense::drag());
+        let to_screen = |x: f32, y: f32| rect.min + egui::vec2(x * k, y * k);
+        let to_photo = |p: egui::Pos2| [(p.x - rect.min.x) / k, (p.y - rect.min.y) / k];
+        let crop_rect = |c: [u32; 4]| {
+            egui::Rect::from_min_max(
+                to_screen(c[0] as f32, c[1] as f32),
+                to_screen((c[0] + c[2]) as f32, (c[1] + c[3]) as f32),
+            )
+        };
+        let mut crop = old;
+        if response.drag_started()
+            && let Some(pos) = response.interact_pointer_pos()
+        {
+            let r = crop_rect(crop);
+            let corners = [
+                r.left_top(),
+                r.right_top(),
+                r.left_bottom(),
+                r.right_bottom(),
+            ];
+            let near = corners
+                .iter()
+                .enumerate()
+                .find(|(_, c)| c.distance(pos) <= 10.0)
+                .map(|(i, _)| i);
+            let drag = if let Some(i) = near {
+                // Keep the opposite corner fixed.
+                let opp = corners[3 - i];
+                CropDrag::Resize {
+                    fixed: to_photo(opp),
+                }
+            } else if r.contains(pos) {
+                CropDrag::Move
+            } else {
+                CropDrag::Resize {
+                    fixed: to_photo(pos),
+                }
+            };
+            self.crop_drag = Some((drag, crop, pos));
+        }
+        if let Some((drag, start_crop, start_pos)) = self.crop_drag
+            && let Some(pos) = response.interact_pointer_pos()
+            && response.dragged()
+        {
+            let (w, h) = (full[0], full[1]);
+            match drag {
+                CropDrag::Move => {
+                    let d = (pos - start_pos) / k;
+                    let x = (start_crop[0] as f32 + d.x)
+                        .round()
+                        .clamp(0.0, (w - start_crop[2]) as f32);
+                    let y = (start_crop[1] as f32 + d.y)
+                        .round()
+                        .clamp(0.0, (h - start_crop[3]) as f32);
+                    crop = [x as u32, y as u32, start_crop[2], start_crop[3]];
+                }
+                CropDrag::Resize { fixed } => {
+                    let p = to_photo(pos);
+                    let (x0, x1) = (fixed[0].min(p[0]), fixed[0].max(p[0]));
+                    let (y0, y1) = (fixed[1].min(p[1]), fixed[1].max(p[1]));
+                    let x0 = x0.round().clamp(0.0, (w - MIN_CROP) as f32) as u32;
+                    let y0 = y0.round().clamp(0.0, (h - MIN_CROP) as f32) as u32;
+                    let x1 = (x1.round() as u32).clamp(x0 + MIN_CROP, w);
+                    let y1 = (y1.round() as u32).clamp(y0 + MIN_CROP, h);
+                    crop = [x0, y0, x1 - x0, y1 - y0];
+                }
+            }
+        }
+        if response.drag_stopped() {
+            self.crop_drag = None;
+        }
+        let painter = ui.painter_at(rect);
+        painter.image(
+            texture,
+            rect,
+            egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+            egui::Color32::WHITE,
+        );
+        let r = crop_rect(crop);
+        let shade = egui::Color32::from_black_alpha(140);
+        for outside in [
+            egui::Rect::from_min_max(rect.min, egui::pos2(rect.max.x, r.min.y)),
+            egui::Rect::from_min_max(egui::pos2(rect.min.x, r.max.y), rect.max),
+            egui::Rect::from_min_max(
+                egui::pos2(rect.min.x, r.min.y),
+                egui::pos2(r.min.x, r.max.y),
+            ),
+            egui::Rect::from_min_max(
+                egui::pos2(r.max.x, r.min.y),
+                egui::pos2(rect.max.x, r.max.y),
+            ),
+        ] {
+            painter.rect_filled(outside, 0.0, shade);
+        }
+        let yellow = egui::Color32::from_rgb(250, 200, 60);
+        painter.rect_stroke(
+            r,
+            0.0,
+            egui::Stroke::new(1.5, yellow),
+            egui::StrokeKind::Middle,
+        );
+        for c in [
+            r.left_top(),
+            r.right_top(),
+            r.left_bottom(),
+            r.right_bottom(),
+        ] {
+            painter.circle_filled(c, 3.5, yellow);
+        }
+        self.record("photo", &response);
+        self.widgets
+            .insert("crop".into(), [r.min.x, r.min.y, r.width(), r.height()]);
+        ui.horizontal(|ui| {
+            ui.label(format!(
+                "crop {}×{} at {}, {}",
+                crop[2], crop[3], crop[0], crop[1]
+            ));
+            let whole = [0, 0, full[0], full[1]];
+            let r = ui.add_enabled(crop != whole, egui::Button::new("Whole photo").small());
+            self.record("crop_reset", &r);
+            if r.clicked() {
+                crop = whole;
+            }
+        });
+        if crop != old {
+            if let Some(p) = self.photo.as_mut() {
+                p.crop = crop;
+            }
+            let seed = self.params.as_ref().map(|p| p.seed).unwrap_or(1);
+            let args: Vec<JsValue> = crop
+                .iter()
+                .chain(std::iter::once(&seed))
+                .map(|&v| JsValue::from(v))
+                .collect();
+            host("analyseCrop", &args);
+        }
+    }
+
+    /// The radially averaged power spectrum and the RGB histograms, photo against model. The
+    /// model's statistics are recomputed by the worker once edits pause.
+    fn plots(&mut self, ui: &mut egui::Ui) {
+        use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints};
+        let Some(photo) = self.photo_stats.clone() else {
+            return;
+        };
+        let model = self.model_stats.as_ref().map(|(_, s)| s.clone());
+        let model = model.as_ref();
+        let current = self.plots_current();
+        ui.label(if current {
+            "Photo (solid) vs model (dashed)"
+        } else {
+            "Photo (solid) vs model (dashed) — updating…"
+        });
+        let ring_points = |spec: &[f64]| -> PlotPoints<'static> {
+            spec.iter()
+                .enumerate()
+                .filter(|(_, p)| **p > 0.0)
+                .map(|(k, p)| {
+                    // Ring k spans 2^−(1 + (k+1)/4) … 2^−(1 + k/4) cycles per texel.
+                    let log2_f = -(1.0 + (k as f64 + 0.5) / 4.0);
+                    [log2_f, 10.0 * p.log10()]
+                })
+                .collect()
+        };
+        let r = Plot::new("spectrum")
+            .height(150.0)
+            .legend(Legend::default())
+            .x_axis_label("log₂ frequency (cycles / texel)")
+            .y_axis_label("power dB")
+            .allow_scroll(false)
+            .show(ui, |plot| {
+                plot.line(
+                    Line::new("photo", ring_points(&photo.spectrum))
+                        .color(egui::Color32::from_rgb(230, 230, 230)),
+                );
+                if let Some(m) = model {
+                    plot.line(
+                        Line::new("model", ring_points(&m.spectrum))
+                            .color(egui::Color32::from_rgb(250, 200, 60))
+                            .style(LineStyle::dashed_loose()),
+                    );
+                }
+            });
+        self.record("plot.spectrum", &r.response);
+        let colours = [
+            egui::Color32::from_rgb(235, 90, 80),
+            egui::Color32::from_rgb(90, 200, 100),
+            egui::Color32::from_rgb(90, 140, 240),
+        ];
+        let hist_points = |h: &[f64]| -> PlotPoints<'static> {
+            let n = h.len() as f64;
+            h.iter()
+                .enumerate()
+                .map(|(i, v)| [(i as f64 + 0.5) / n, *v * n])
+                .collect()
+        };
+        let r = Plot::new("histograms")
+            .height(140.0)
+            .x_axis_label("value")
+            .y_axis_label("density")
+            .allow_scroll(false)
+            .show(ui, |plot| {
+                for c in 0..3 {
+                    let name = ["R", "G", "B"][c];
+                    plot.line(
+                        Line::new(format!("photo {name}"), hist_points(&photo.histograms[c]))
+                            .color(colours[c]),
+                    );
+                    if let Some(m) = model {
+                        plot.line(
+                            Line::new(format!("model {name}"), hist_points(&m.histograms[c]))
+                                .color(colours[c])
+                                .style(LineStyle::dashed_loose()),
+                        );
+                    }
+                }
+            });
+        self.record("plot.histograms", &r.response);
+    }
+
+    fn plots_current(&self) -> bool {
+        match (&self.model_stats, &self.params) {
+            (Some((p, _)), Some(cur)) => p == cur,
+            _ => false,
+        }
+    }
+
+    /// Asks the worker for the model's statistics once edits have paused for 300 ms.
+    fn request_stats(&mut self, ctx: &egui::Context) {
+        let Some(params) = &self.params else {
+            return;
+        };
+        if self.stats_requested.as_ref() == Some(params) {
+            return;
+        }
+        let idle = now_ms() - self.last_edit_ms;
+        if ctx.dragged_id().is_some() || idle < 300.0 {
+            ctx.request_repaint_after(std::time::Duration::from_millis(100));
+            return;
+        }
+        self.stats_requested = Some(params.clone());
+        host("modelStats", &[JsValue::from_str(&params.to_json())]);
+    }
+
+    /// Right panel: history buttons and a slider for every parameter.
+    fn controls(&mut self, ui: &mut egui::Ui) {
+        ui.heading("Parameters");
         ui.horizontal(|ui| {
             let r = ui
                 .add_enabled(!self.undo.is_empty(), egui::Button::new("Undo"))
@@ -257,18 +785,21 @@ impl ProctexApp {
             if r.clicked() {
                 self.redo();
             }
-            let can_reset = self.analysis.is_some();
-            let r = ui.add_enabled(can_reset, egui::Button::new("Reset to analysed"));
+            let r = ui.add_enabled(
+                self.analysed.is_some(),
+                egui::Button::new("Reset to analysed"),
+            );
             self.record("reset", &r);
             if r.clicked()
-                && let Some(a) = &self.analysis
+                && let Some(a) = &self.analysed
             {
-                self.params = Some(a.params.clone());
+                self.params = Some(a.clone());
             }
         });
         let Some(params) = self.params.as_mut() else {
             return;
         };
+        let before = params.clone();
         let mut rects: Vec<(String, egui::Response)> = Vec::new();
         ui.separator();
         egui::ScrollArea::vertical().show(ui, |ui| {
@@ -288,12 +819,22 @@ impl ProctexApp {
                 ui.label("seed");
                 let r = ui.add(egui::DragValue::new(&mut params.seed));
                 rects.push(("seed".into(), r));
+                let r = ui
+                    .checkbox(&mut params.solid, "solid (3D noise)")
+                    .on_hover_text("Plane view shows the z = 0 slice of the solid texture");
+                rects.push(("solid".into(), r));
             });
+            ui.separator();
+            ui.label("Colour");
             ui.horizontal(|ui| {
                 ui.label("mean colour");
                 let r = ui.color_edit_button_rgb(&mut params.colour.mean);
                 rects.push(("mean".into(), r));
             });
+            let r = ui.add(
+                egui::Slider::new(&mut params.colour.contrast, 0.0..=MAX_CONTRAST).text("contrast"),
+            );
+            rects.push(("contrast".into(), r));
             let Model::Noise(model) = &mut params.model;
             let r = ui.checkbox(&mut model.histogram.enabled, "histogram matching");
             rects.push(("histogram".into(), r));
@@ -316,12 +857,34 @@ impl ProctexApp {
                 }
             }
         });
+        if *params != before {
+            self.last_edit_ms = now_ms();
+        }
         for (name, r) in rects {
             self.record(name, &r);
         }
     }
 
-    fn texture_view(&mut self, ui: &mut egui::Ui) {
+    /// The view toolbar (above the central panel).
+    fn toolbar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            for m in ViewMode::ALL {
+                let r = ui.selectable_label(self.mode == m, m.label());
+                self.record(format!("mode.{}", m.name()), &r);
+                if r.clicked() {
+                    self.mode = m;
+                }
+            }
+            ui.separator();
+            let r = ui
+                .checkbox(&mut self.period_outline, "tile outline")
+                .on_hover_text("Outline the tile period: the texture repeats seamlessly across it");
+            self.record("period", &r);
+        });
+    }
+
+    /// Central panel: the texture.
+    fn view_panel(&mut self, ui: &mut egui::Ui) {
         let (rect, response) =
             ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
         self.record("texture", &response);
@@ -335,7 +898,80 @@ impl ProctexApp {
             );
             return;
         };
-        // Pan with the mouse; zoom about the cursor with the wheel.
+        let ppp = ui.ctx().pixels_per_point();
+        match self.mode {
+            ViewMode::Sphere | ViewMode::Cube => {
+                self.orbit_input(ui, &response);
+                let mut solid = params;
+                solid.solid = true;
+                self.orbit.shape = if self.mode == ViewMode::Sphere {
+                    Shape::Sphere
+                } else {
+                    Shape::Cube
+                };
+                let px = rect.size() * ppp;
+                let sv = SolidView::new(
+                    &self.orbit,
+                    [px.x.round(), px.y.round()],
+                    [(rect.min.x * ppp).round(), (rect.min.y * ppp).round()],
+                );
+                self.paint_texture(ui, rect, solid, Pass::Solid, View::default(), Some(sv));
+            }
+            ViewMode::Plane | ViewMode::Split => {
+                self.pan_zoom_input(ui, rect, &response);
+                let (photo_rect, tex_rect) = if self.mode == ViewMode::Split {
+                    let mid = rect.center().x.round();
+                    (
+                        Some(egui::Rect::from_min_max(
+                            rect.min,
+                            egui::pos2(mid, rect.max.y),
+                        )),
+                        egui::Rect::from_min_max(egui::pos2(mid, rect.min.y), rect.max),
+                    )
+                } else {
+                    (None, rect)
+                };
+                let view = View {
+                    origin: self.view.origin,
+                    pixel_size: self.view.units_per_point / ppp,
+                    z: 0.0,
+                };
+                let pass = if self.flat_shader {
+                    Pass::Flat
+                } else {
+                    Pass::Plane
+                };
+                self.paint_texture(ui, tex_rect, params.clone(), pass, view, None);
+                if let Some(pr) = photo_rect {
+                    self.paint_photo_crop(ui, pr);
+                    ui.painter().line_segment(
+                        [pr.right_top(), pr.right_bottom()],
+                        egui::Stroke::new(2.0, egui::Color32::from_gray(20)),
+                    );
+                    self.widgets.insert(
+                        "split.photo".into(),
+                        [pr.min.x, pr.min.y, pr.width(), pr.height()],
+                    );
+                    self.widgets.insert(
+                        "split.texture".into(),
+                        [
+                            tex_rect.min.x,
+                            tex_rect.min.y,
+                            tex_rect.width(),
+                            tex_rect.height(),
+                        ],
+                    );
+                }
+                self.period_lines = if self.period_outline {
+                    self.paint_period(ui, tex_rect, &params)
+                } else {
+                    0
+                };
+            }
+        }
+    }
+
+    fn pan_zoom_input(&mut self, ui: &egui::Ui, rect: egui::Rect, response: &egui::Response) {
         if response.dragged() {
             let d = response.drag_delta();
             self.view.origin[0] -= d.x * self.view.units_per_point;
@@ -357,33 +993,171 @@ impl ProctexApp {
                 ];
             }
         }
+    }
+
+    /// Orbit controls: drag turns the object, the wheel moves the camera in and out.
+    fn orbit_input(&mut self, ui: &egui::Ui, response: &egui::Response) {
+        if response.dragged() {
+            let d = response.drag_delta();
+            self.orbit.yaw_deg = (self.orbit.yaw_deg - d.x * 0.4).rem_euclid(360.0);
+            self.orbit.pitch_deg = (self.orbit.pitch_deg + d.y * 0.4).clamp(-85.0, 85.0);
+        }
+        if response.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                self.orbit.distance =
+                    (self.orbit.distance * (-scroll * 0.002).exp()).clamp(1.6, 12.0);
+            }
+        }
+    }
+
+    fn paint_texture(
+        &self,
+        ui: &egui::Ui,
+        rect: egui::Rect,
+        params: Params,
+        pass: Pass,
+        view: View,
+        solid: Option<SolidView>,
+    ) {
         let ppp = ui.ctx().pixels_per_point();
-        let view = View {
-            origin: self.view.origin,
-            pixel_size: self.view.units_per_point / ppp,
-            z: 0.0,
-        };
         ui.painter().add(egui_wgpu::Callback::new_paint_callback(
             rect,
             TextureCallback {
                 params,
+                pass,
                 view,
+                solid,
                 frame_offset: [(rect.min.x * ppp).round(), (rect.min.y * ppp).round()],
             },
         ));
+    }
+
+    /// The photo crop at the texture view's scale: world units are photo pixels and the crop's
+    /// top-left is world (0, 0), so both halves show the same world window.
+    fn paint_photo_crop(&self, ui: &egui::Ui, rect: egui::Rect) {
+        let painter = ui.painter_at(rect);
+        painter.rect_filled(rect, 0.0, egui::Color32::from_gray(28));
+        let Some(photo) = &self.photo else {
+            return;
+        };
+        let [cx, cy, cw, ch] = photo.crop.map(|v| v as f32);
+        let upp = self.view.units_per_point;
+        let o = self.view.origin;
+        // Visible world window ∩ the crop, in world units.
+        let x0 = o[0].max(0.0);
+        let y0 = o[1].max(0.0);
+        let x1 = (o[0] + rect.width() * upp).min(cw);
+        let y1 = (o[1] + rect.height() * upp).min(ch);
+        if x1 <= x0 || y1 <= y0 {
+            return;
+        }
+        let screen = egui::Rect::from_min_max(
+            rect.min + egui::vec2((x0 - o[0]) / upp, (y0 - o[1]) / upp),
+            rect.min + egui::vec2((x1 - o[0]) / upp, (y1 - o[1]) / upp),
+        );
+        let [fw, fh] = photo.full.map(|v| v as f32);
+        let uv = egui::Rect::from_min_max(
+            egui::pos2((cx + x0) / fw, (cy + y0) / fh),
+            egui::pos2((cx + x1) / fw, (cy + y1) / fh),
+        );
+        painter.image(photo.texture.id(), screen, uv, egui::Color32::WHITE);
+        painter.text(
+            rect.left_top() + egui::vec2(6.0, 6.0),
+            egui::Align2::LEFT_TOP,
+            "photo crop",
+            egui::FontId::proportional(13.0),
+            egui::Color32::from_gray(230),
+        );
+    }
+
+    /// Outlines the tile lattice: the texture repeats every `period_texels` texels along both
+    /// texture axes (rotated and scaled into world space). Returns the number of lines drawn
+    /// (0 when the lattice is finer than 4 pixels, where it would hide the texture).
+    fn paint_period(&self, ui: &egui::Ui, rect: egui::Rect, params: &Params) -> usize {
+        let period = period_texels(params) as f32;
+        let s = params.transform.scale;
+        let (sin, cos) = params.transform.rotation_deg.to_radians().sin_cos();
+        let upp = self.view.units_per_point;
+        let o = self.view.origin;
+        let painter = ui.painter_at(rect);
+        let label = format!("tile period {:.0} px", period * s);
+        if period * s / upp < 4.0 {
+            painter.text(
+                rect.left_bottom() + egui::vec2(8.0, -8.0),
+                egui::Align2::LEFT_BOTTOM,
+                format!("{label}: finer than 4 screen pixels here"),
+                egui::FontId::proportional(13.0),
+                egui::Color32::from_gray(230),
+            );
+            return 0;
+        }
+        // World → texel: u = R(−θ)·x / s; texel → world: x = s·R(θ)·u.
+        let to_texel = |x: f32, y: f32| [(cos * x + sin * y) / s, (-sin * x + cos * y) / s];
+        let to_screen = |u: [f32; 2]| {
+            let wx = s * (cos * u[0] - sin * u[1]);
+            let wy = s * (sin * u[0] + cos * u[1]);
+            rect.min + egui::vec2((wx - o[0]) / upp, (wy - o[1]) / upp)
+        };
+        let corners = [
+            to_texel(o[0], o[1]),
+            to_texel(o[0] + rect.width() * upp, o[1]),
+            to_texel(o[0], o[1] + rect.height() * upp),
+            to_texel(o[0] + rect.width() * upp, o[1] + rect.height() * upp),
+        ];
+        let lo = [0, 1].map(|a| corners.iter().map(|c| c[a]).fold(f32::MAX, f32::min));
+        let hi = [0, 1].map(|a| corners.iter().map(|c| c[a]).fold(f32::MIN, f32::max));
+        let stroke = egui::Stroke::new(1.5, egui::Color32::from_rgb(250, 200, 60));
+        let mut lines = 0;
+        for a in 0..2 {
+            let b = 1 - a;
+            let first = (lo[a] / period).floor() as i64;
+            let last = (hi[a] / period).ceil() as i64;
+            for i in first..=last {
+                let mut p0 = [0.0; 2];
+                let mut p1 = [0.0; 2];
+                p0[a] = i as f32 * period;
+                p1[a] = i as f32 * period;
+                p0[b] = lo[b];
+                p1[b] = hi[b];
+                painter.line_segment([to_screen(p0), to_screen(p1)], stroke);
+                lines += 1;
+            }
+        }
+        painter.text(
+            rect.left_bottom() + egui::vec2(8.0, -8.0),
+            egui::Align2::LEFT_BOTTOM,
+            label,
+            egui::FontId::proportional(13.0),
+            egui::Color32::from_gray(230),
+        );
+        lines
     }
 
     fn publish(&self) {
         SNAPSHOT.with(|s| {
             *s.borrow_mut() = Snapshot {
                 frame: self.frame,
-                photo: self.photo.clone(),
+                photo: self.photo.as_ref().map(|p| p.name.clone()),
+                photo_size: self.photo.as_ref().map(|p| p.full),
+                crop: self.photo.as_ref().map(|p| p.crop),
                 analysis_ms: self.analysis_ms,
+                analyses: self.analyses,
+                busy: self.busy.is_some(),
                 error: self.error.clone(),
                 params_json: self.params.as_ref().map(Params::to_json),
                 widgets: self.widgets.clone(),
                 view_origin: self.view.origin,
                 view_units_per_point: self.view.units_per_point,
+                view_mode: Some(self.mode),
+                orbit: [
+                    self.orbit.yaw_deg,
+                    self.orbit.pitch_deg,
+                    self.orbit.distance,
+                ],
+                period_outline: self.period_outline,
+                period_lines: self.period_lines,
+                plots_current: self.plots_current(),
                 undo: self.undo.len(),
                 redo: self.redo.len(),
             }
@@ -391,11 +1165,21 @@ impl ProctexApp {
     }
 }
 
+/// The shipped sample photos (`www/samples/`).
+pub const SAMPLES: [&str; 6] = [
+    "stk_rock_mountain_512.png",
+    "skimage_gravel_512.png",
+    "skimage_grass_512.png",
+    "stk_blackrock_256.png",
+    "skimage_brick_512.png",
+    "stk_wood_planks1_256.png",
+];
+
 impl eframe::App for ProctexApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.frame += 1;
-        self.apply_commands();
         let ctx = ui.ctx().clone();
+        self.apply_commands(&ctx);
         let (undo, redo) = ctx.input_mut(|i| {
             let redo = i.consume_key(
                 egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
@@ -410,13 +1194,22 @@ impl eframe::App for ProctexApp {
             self.undo();
         }
         self.widgets.clear();
-        egui::Panel::left("controls")
-            .default_size(340.0)
+        egui::Panel::left("photo")
+            .default_size(300.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical()
+                    .id_salt("photo_scroll")
+                    .show(ui, |ui| self.photo_panel(ui))
+            });
+        egui::Panel::right("controls")
+            .default_size(320.0)
             .show(ui, |ui| self.controls(ui));
+        egui::Panel::top("toolbar").show(ui, |ui| self.toolbar(ui));
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
-            .show(ui, |ui| self.texture_view(ui));
+            .show(ui, |ui| self.view_panel(ui));
         self.commit_edits(&ctx);
+        self.request_stats(&ctx);
         self.publish();
     }
 }
@@ -425,7 +1218,9 @@ impl eframe::App for ProctexApp {
 /// clipped to the view rectangle by egui.
 struct TextureCallback {
     params: Params,
+    pass: Pass,
     view: View,
+    solid: Option<SolidView>,
     frame_offset: [f32; 2],
 }
 
@@ -440,7 +1235,10 @@ impl egui_wgpu::CallbackTrait for TextureCallback {
     ) -> Vec<wgpu::CommandBuffer> {
         if let Some(r) = resources.get_mut::<TextureRenderer>() {
             r.set_params(device, queue, &self.params);
-            r.set_view(queue, &self.view, self.frame_offset);
+            match &self.solid {
+                Some(sv) => r.set_solid_view(queue, sv),
+                None => r.set_view(queue, &self.view, self.frame_offset),
+            }
         }
         Vec::new()
     }
@@ -452,7 +1250,7 @@ impl egui_wgpu::CallbackTrait for TextureCallback {
         resources: &egui_wgpu::CallbackResources,
     ) {
         if let Some(r) = resources.get::<TextureRenderer>() {
-            r.draw(pass);
+            r.draw_pass(pass, self.pass);
         }
     }
 }
@@ -482,8 +1280,5 @@ fn ui_fonts() -> egui::FontDefinitions {
 }
 
 fn now_ms() -> f64 {
-    web_sys::window()
-        .and_then(|w| w.performance())
-        .map(|p| p.now())
-        .unwrap_or(0.0)
+    js_sys::Date::now()
 }

@@ -3,7 +3,8 @@
 
 use wasm_bindgen::prelude::*;
 
-use crate::app::{Command, ProctexApp, SNAPSHOT, send};
+use crate::app::{Command, PhotoPreview, ProctexApp, SNAPSHOT, ViewMode, send};
+use crate::jobs;
 use proctex::params::Params;
 
 /// The running app (so JS can ask whether it panicked).
@@ -46,15 +47,105 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement) -> Result<WebHandle, JsVa
     Ok(WebHandle { runner })
 }
 
-/// Analyses a decoded image (interleaved 8-bit RGBA, `width × height`) and shows the texture.
-#[wasm_bindgen(js_name = loadPixels)]
-pub fn load_pixels(rgba: Vec<u8>, width: u32, height: u32, name: String) {
-    send(Command::LoadPixels {
-        rgba,
-        width,
-        height,
+// ---- Worker side: pure computations, no app (see `jobs`). ----
+
+/// Worker job: analyses `crop` (`[x, y, w, h]` photo pixels, or empty for all) of an RGBA image
+/// and returns the report (params and plot statistics) as JSON; throws the error's message.
+#[wasm_bindgen(js_name = analyzeRgba)]
+pub fn analyze_rgba(
+    rgba: &[u8],
+    width: u32,
+    height: u32,
+    crop: Vec<u32>,
+    seed: u32,
+) -> Result<String, JsValue> {
+    let crop = match crop.as_slice() {
+        [] => None,
+        [x, y, w, h] => Some([*x, *y, *w, *h]),
+        _ => return Err(JsValue::from_str("crop must be [x, y, w, h]")),
+    };
+    let report = jobs::analyze_rgba(rgba, width, height, crop, seed).map_err(js_error)?;
+    serde_json::to_string(&report).map_err(js_error)
+}
+
+/// Worker job: the model's plot statistics for a params document, as JSON.
+#[wasm_bindgen(js_name = modelStats)]
+pub fn model_stats(params_json: String) -> Result<String, JsValue> {
+    let p = Params::from_json(&params_json).map_err(js_error)?;
+    serde_json::to_string(&jobs::model_stats(&p)).map_err(js_error)
+}
+
+/// Worker job: the CPU reference render of a params document as RGBA8 (the preview shown when
+/// the browser has no WebGPU).
+#[wasm_bindgen(js_name = previewRgba)]
+pub fn preview_rgba(params_json: String, width: u32, height: u32) -> Result<Vec<u8>, JsValue> {
+    let p = Params::from_json(&params_json).map_err(js_error)?;
+    Ok(jobs::preview_rgba(&p, width.min(2048), height.min(2048)))
+}
+
+fn js_error(e: impl std::fmt::Display) -> JsValue {
+    JsValue::from_str(&e.to_string())
+}
+
+// ---- UI side: the page tells the app what the worker did. ----
+
+/// An analysis started or moved on to `stage`; `name` is the photo (absent for a crop).
+#[wasm_bindgen(js_name = analysisProgress)]
+pub fn analysis_progress(name: Option<String>, stage: String) {
+    send(Command::Busy { name, stage });
+}
+
+/// An analysis finished: the worker's report JSON, the photo name, the time it took, and for a
+/// new photo its preview (RGBA8, `preview_width × preview_height`) and full size.
+#[wasm_bindgen(js_name = analysisDone)]
+#[allow(clippy::too_many_arguments)]
+pub fn analysis_done(
+    report_json: String,
+    name: String,
+    ms: f64,
+    preview: Option<Vec<u8>>,
+    preview_width: u32,
+    preview_height: u32,
+    width: u32,
+    height: u32,
+) -> Result<(), JsValue> {
+    let report: jobs::Report = serde_json::from_str(&report_json).map_err(js_error)?;
+    report.params.validate().map_err(js_error)?;
+    send(Command::Analysed {
+        report: Box::new(report),
         name,
+        ms,
+        preview: preview.map(|rgba| PhotoPreview {
+            rgba,
+            size: [preview_width, preview_height],
+            full: [width, height],
+        }),
     });
+    Ok(())
+}
+
+/// The model statistics the app asked for (`proctexHost.modelStats(params)`).
+#[wasm_bindgen(js_name = modelStatsDone)]
+pub fn model_stats_done(params_json: String, stats_json: String) -> Result<(), JsValue> {
+    let p = Params::from_json(&params_json).map_err(js_error)?;
+    let s: jobs::ImageStats = serde_json::from_str(&stats_json).map_err(js_error)?;
+    send(Command::ModelStats(Box::new((p, s))));
+    Ok(())
+}
+
+/// Switches the view: "plane", "split", "sphere" or "cube".
+#[wasm_bindgen(js_name = setViewMode)]
+pub fn set_view_mode(mode: String) -> Result<(), JsValue> {
+    let m = ViewMode::parse(&mode)
+        .ok_or_else(|| JsValue::from_str("view mode must be plane, split, sphere or cube"))?;
+    send(Command::SetMode(m));
+    Ok(())
+}
+
+/// Benchmarks: draw the plane view with the trivial mean-colour shader instead.
+#[wasm_bindgen(js_name = setFlatShader)]
+pub fn set_flat_shader(on: bool) {
+    send(Command::FlatShader(on));
 }
 
 /// Shows an error message in the app (e.g. a file the browser could not decode).
