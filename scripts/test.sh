@@ -2,7 +2,8 @@
 # Runs every test of the project, exactly as CI does (.ci/run calls this script):
 # formatting, lints (warnings are errors, native and wasm), all cargo tests (with naga
 # validation and the native GPU-vs-CPU shader test), the wasm build, the Playwright tests in
-# Chromium, then the speed benchmark (prints ratios measured in one run; asserts nothing).
+# Chromium, then the speed benchmarks, analyzer and browser app (they print ratios measured in
+# one run and assert nothing about time).
 # Installs what it needs: a Rust toolchain with rustfmt and clippy, Mesa's software Vulkan
 # driver (lavapipe), Debian's chromium, and (through scripts/build-web.sh) the wasm target,
 # wasm-bindgen-cli and the npm packages.
@@ -80,8 +81,9 @@ rm -f "$elog"
 e2e_passed=${e2e_passed:-0}
 e2e_failed=${e2e_failed:-0}
 
-step "benchmark (ratios within one run; not a pass/fail test)"
+step "benchmarks (ratios within one run; not pass/fail tests)"
 cargo bench -p proctex-analyzer --bench analysis
+(cd e2e && npx playwright test --config bench.config.js) 2>&1 | grep -v -e '^\[WebServer\]' -e '^\[page\]'
 
 step "summary"
 echo "cargo: ${passed} passed, ${failed} failed; playwright: ${e2e_passed} passed, ${e2e_failed} failed"

@@ -1,0 +1,106 @@
+// Benchmark of the browser app on this machine's software WebGPU adapter (SwiftShader).
+// Prints each number beside a baseline measured in the same run; asserts nothing about time.
+const { test } = require('@playwright/test');
+const fs = require('fs');
+const path = require('path');
+const { openApp, state, waitFrames } = require('../tests/helpers');
+
+const ROOT = path.resolve(__dirname, '..', '..');
+
+// Mean and max interval between animation frames while the app repaints continuously.
+async function frameTimes(page, frames) {
+  return page.evaluate(async (n) => {
+    const ts = [];
+    await new Promise((done) => {
+      const tick = (t) => {
+        ts.push(t);
+        window.proctex.requestRepaint();
+        if (ts.length < n + 3) requestAnimationFrame(tick); else done();
+      };
+      requestAnimationFrame(tick);
+    });
+    const d = ts.slice(3).map((t, i) => t - ts[i + 2]);
+    return { mean: d.reduce((a, b) => a + b, 0) / d.length, max: Math.max(...d) };
+  }, frames);
+}
+
+test('benchmark: 12 MP drop to first frame, longest frame, 2D frame time at 1024²', async ({ page }) => {
+  await openApp(page);
+  const lines = [];
+  const out = (s) => { lines.push(s); console.log(s); };
+  const wasm = fs.statSync(path.join(ROOT, 'www', 'pkg', 'proctex_web_bg.wasm')).size;
+  out(`wasm after wasm-opt: ${wasm} bytes (${(wasm / 1e6).toFixed(2)} MB)`);
+
+  // A 12-megapixel JPEG (4000×3000) made in the page from a shipped sample.
+  const size = await page.evaluate(async () => {
+    const img = await createImageBitmap(await (await fetch('samples/skimage_gravel_512.png')).blob());
+    const c = new OffscreenCanvas(4000, 3000);
+    const ctx = c.getContext('2d');
+    for (let y = 0; y < 3000; y += 512) for (let x = 0; x < 4000; x += 512) ctx.drawImage(img, x, y);
+    window.benchJpeg = await c.convertToBlob({ type: 'image/jpeg', quality: 0.92 });
+    return window.benchJpeg.size;
+  });
+
+  // Baseline: the browser's own decode of that file to pixels, on the main thread.
+  const decodeMs = await page.evaluate(async () => {
+    const t0 = performance.now();
+    const bitmap = await createImageBitmap(window.benchJpeg);
+    const ctx = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(bitmap, 0, 0);
+    ctx.getImageData(0, 0, bitmap.width, bitmap.height);
+    return performance.now() - t0;
+  });
+
+  // Drop → first procedural frame, with frame and main-thread stall tracking meanwhile.
+  const before = (await state(page)).analyses;
+  const drop = await page.evaluate(async (n) => {
+    const file = new File([window.benchJpeg], 'bench-12mp.jpg', { type: 'image/jpeg' });
+    const frames = [];
+    let longestStall = 0, last = performance.now();
+    const probe = setInterval(() => {
+      const t = performance.now(); longestStall = Math.max(longestStall, t - last); last = t;
+    }, 10);
+    const t0 = performance.now();
+    frames.push(t0);
+    const firstFrame = await new Promise((done) => {
+      const tick = (t) => {
+        frames.push(Math.max(t, frames[frames.length - 1]));
+        window.proctex.requestRepaint();
+        if (window.proctex.state().analyses > n) done(performance.now() - t0);
+        else requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+      const dt = new DataTransfer();
+      dt.items.add(file);
+      document.getElementById('proctex_canvas').dispatchEvent(
+        new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    });
+    clearInterval(probe);
+    const gaps = frames.slice(1).map((t, i) => t - frames[i]);
+    return { firstFrame, longestFrame: Math.max(0, ...gaps), frames: frames.length, longestStall,
+             worker: window.proctex.lastTimings() };
+  }, before);
+  out(`12 MP JPEG (${(size / 1e6).toFixed(1)} MB): drop → first procedural frame ${drop.firstFrame.toFixed(0)} ms ` +
+      `(worker: decode ${drop.worker.decodeMs.toFixed(0)} ms, decode + analysis ${drop.worker.ms.toFixed(0)} ms); ` +
+      `baseline: the browser's own decode to pixels on the main thread ${decodeMs.toFixed(0)} ms ` +
+      `(ratio ${(drop.firstFrame / decodeMs).toFixed(1)}×)`);
+
+  // Frame times: the texture view as close to 1024² as the window allows.
+  const s = await state(page);
+  const [, , w, h] = s.widgets.texture;
+  await page.evaluate(() => window.proctex.setFlatShader(true));
+  await waitFrames(page, 2);
+  const flat = await frameTimes(page, 6);
+  await page.evaluate(() => window.proctex.setFlatShader(false));
+  await waitFrames(page, 1);
+  const plane = await frameTimes(page, 6);
+  out(`longest frame during drop → first frame: ${drop.longestFrame.toFixed(0)} ms over ${drop.frames - 1} frames ` +
+      `(longest main-thread stall ${drop.longestStall.toFixed(0)} ms); ` +
+      `baseline: the 2D view's own steady frame ${plane.mean.toFixed(0)} ms`);
+  out(`2D view ${Math.round(w)}×${Math.round(h)} CSS px: frame ${plane.mean.toFixed(0)} ms (max ${plane.max.toFixed(0)}); ` +
+      `baseline: trivial shader (mean colour) over the same view ${flat.mean.toFixed(0)} ms (max ${flat.max.toFixed(0)}); ` +
+      `ratio ${(plane.mean / flat.mean).toFixed(1)}×; ` +
+      `${((plane.mean - flat.mean) / (w * h / 1e6)).toFixed(0)} ms per megapixel of texture`);
+  fs.mkdirSync(path.join(__dirname, '..', 'test-results'), { recursive: true });
+  fs.writeFileSync(path.join(__dirname, '..', 'test-results', 'bench.txt'), lines.join('\n') + '\n');
+});
