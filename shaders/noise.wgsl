@@ -19,8 +19,9 @@ fn wrap_coord(p: f32, n: f32) -> f32 {
     return p - n * floor(p / n);
 }
 
+// i mod n for a power-of-two tile side n: a mask (integer division is slow on software GPUs).
 fn wrap_index(i: i32, n: i32) -> i32 {
-    return ((i % n) + n) % n;
+    return i & (n - 1);
 }
 
 fn noise2(p: vec2<f32>) -> f32 {
@@ -28,13 +29,17 @@ fn noise2(p: vec2<f32>) -> f32 {
     let nf = f32(ni);
     let bx = bspline_weights(wrap_coord(p.x, nf));
     let by = bspline_weights(wrap_coord(p.y, nf));
+    let cols = vec3<i32>(
+        wrap_index(bx.mid - 1, ni),
+        wrap_index(bx.mid, ni),
+        wrap_index(bx.mid + 1, ni),
+    );
     var sum = 0.0;
     for (var dy = 0; dy < 3; dy++) {
         let row = wrap_index(by.mid + dy - 1, ni);
         var line = 0.0;
         for (var dx = 0; dx < 3; dx++) {
-            let col = wrap_index(bx.mid + dx - 1, ni);
-            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(col, row), 0).r;
+            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).r;
         }
         sum += by.w[dy] * line;
     }
@@ -47,6 +52,11 @@ fn noise3(p: vec3<f32>) -> f32 {
     let bx = bspline_weights(wrap_coord(p.x, nf));
     let by = bspline_weights(wrap_coord(p.y, nf));
     let bz = bspline_weights(wrap_coord(p.z, nf));
+    let cols = vec3<i32>(
+        wrap_index(bx.mid - 1, ni),
+        wrap_index(bx.mid, ni),
+        wrap_index(bx.mid + 1, ni),
+    );
     var sum = 0.0;
     for (var dz = 0; dz < 3; dz++) {
         let slab = wrap_index(bz.mid + dz - 1, ni);
@@ -55,8 +65,7 @@ fn noise3(p: vec3<f32>) -> f32 {
             let row = wrap_index(by.mid + dy - 1, ni);
             var line = 0.0;
             for (var dx = 0; dx < 3; dx++) {
-                let col = wrap_index(bx.mid + dx - 1, ni);
-                line += bx.w[dx] * textureLoad(tile3, vec3<i32>(col, row, slab), 0).r;
+                line += bx.w[dx] * textureLoad(tile3, vec3<i32>(cols[dx], row, slab), 0).r;
             }
             plane += by.w[dy] * line;
         }

@@ -80,8 +80,8 @@ impl Tile {
     pub fn generate(seed: u32, dims: usize, n: usize, stream: u32) -> Self {
         assert!(dims == 2 || dims == 3, "tiles are 2D or 3D");
         assert!(
-            n >= 4 && n.is_multiple_of(2),
-            "tile side must be even and at least 4"
+            n >= 4 && n.is_power_of_two(),
+            "tile side must be a power of two, at least 4"
         );
         let total = n.pow(dims as u32);
         let r: Vec<f64> = (0..total)
@@ -237,9 +237,16 @@ fn wrap_coord(p: f32, n: f32) -> f32 {
     p - n * (p / n).floor()
 }
 
+/// `i mod n` for a power-of-two tile side `n` (every tile is 128² or 64³): a mask, which the
+/// GPU twin also uses because integer division is slow on software rasterisers (it made
+/// `%` the costliest operation of the plane shader on SwiftShader).
 #[inline]
 fn wrap_index(i: i32, n: i32) -> usize {
-    i.rem_euclid(n) as usize
+    debug_assert!(
+        n > 0 && (n & (n - 1)) == 0,
+        "tile side {n} is not a power of two"
+    );
+    (i & (n - 1)) as usize
 }
 
 /// One 2D wavelet-noise band at `p` (coefficient units), periodic with period `n`.

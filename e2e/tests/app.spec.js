@@ -104,19 +104,32 @@ test('wheel zooms and drag pans the view', async ({ page }) => {
   expect(s2.view_origin[1]).toBeCloseTo(s1.view_origin[1] + 50 * s1.view_units_per_point, 0);
 });
 
-test('a corrupt file and a text file give a visible error and keep the texture', async ({ page }) => {
+test('a corrupt file and a text file dropped on the page give a visible error and keep the texture', async ({ page }) => {
   await openApp(page);
   const params = await page.evaluate(() => window.proctex.getParams());
   for (const file of ['truncated.png', 'text.png']) {
     const bytes = [...fs.readFileSync(path.join(ROOT, 'analyzer', 'tests', 'bad', file))];
-    await page.evaluate(([b, n]) => window.proctex.loadImage(new Uint8Array(b), n), [bytes, file]);
-    await waitFrames(page, 3);
+    await page.evaluate(([b, n]) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([new Uint8Array(b)], n, { type: 'image/png' }));
+      document.getElementById('proctex_canvas').dispatchEvent(
+        new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }, [bytes, file]);
+    await page.waitForFunction((n) => {
+      window.proctex.requestRepaint();
+      const s = window.proctex.state();
+      return s.error && s.error.includes(n) && s.widgets.error;
+    }, file, { polling: 100 });
     const s = await state(page);
-    expect(s.error).toContain(file);
-    expect(s.widgets.error).toBeTruthy();
+    expect(s.error).toContain('cannot read the image');
     expect(s.photo).toBe('stk_rock_mountain_512.png');
     expect(await page.evaluate(() => window.proctex.getParams())).toBe(params);
   }
+  // And it keeps working: the next good photo is analysed.
+  const n = (await state(page)).analyses;
+  await page.evaluate(() => window.proctex.loadSample('skimage_grass_512.png'));
+  await page.waitForFunction((k) => window.proctex.state().analyses > k, n);
+  expect((await state(page)).error).toBeNull();
 });
 
 // Dispatches a drop (or paste) of `file` on the page, as a real drag from the desktop does.

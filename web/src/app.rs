@@ -848,11 +848,23 @@ impl ProctexApp {
                 });
                 let max = weights.iter().cloned().fold(0.05f32, f32::max) * 2.0;
                 for (j, w) in weights.iter_mut().enumerate() {
-                    // Band j holds wavelengths of 2^(j+1)…2^(j+2) texels.
+                    // Band j holds wavelengths of 2^(j+1)…2^(j+2) texels, i.e. frequencies
+                    // 1/hi…1/lo cycles per pixel.
                     let lo = (1u32 << (j + 1)) as f32 * scale;
                     let hi = (1u32 << (j + 2)) as f32 * scale;
                     let r = ui
-                        .add(egui::Slider::new(w, 0.0..=max).text(format!("λ {lo:.0}–{hi:.0} px")));
+                        .add(egui::Slider::new(w, 0.0..=max).text(format!(
+                            "1/{}–1/{} cyc/px",
+                            short(hi),
+                            short(lo)
+                        )))
+                        .on_hover_text(format!(
+                            "band {j}: wavelengths {}–{} px ({}–{} texels); 0 removes it",
+                            short(lo),
+                            short(hi),
+                            1u32 << (j + 1),
+                            1u32 << (j + 2)
+                        ));
                     rects.push((format!("weight.{c}.{j}"), r));
                 }
             }
@@ -1277,6 +1289,15 @@ fn ui_fonts() -> egui::FontDefinitions {
             .insert(family, vec!["Ubuntu-Light".into(), "egui-icons".into()]);
     }
     fonts
+}
+
+/// A positive number in a few characters: 4, 6.8, 1024.
+fn short(v: f32) -> String {
+    if (v - v.round()).abs() < 0.05 || v >= 100.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.1}")
+    }
 }
 
 fn now_ms() -> f64 {
