@@ -12,6 +12,7 @@ pub mod error;
 pub mod evaluate;
 pub mod histogram;
 pub mod input;
+pub mod morph;
 pub mod noise;
 pub mod params;
 pub mod render;

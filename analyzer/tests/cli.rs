@@ -37,6 +37,7 @@ fn help_everywhere() {
         vec!["synth", "--help"],
         vec!["evaluate", "--help"],
         vec!["fidelity", "--help"],
+        vec!["morph", "--help"],
     ] {
         let o = proctex(&args);
         assert!(o.status.success(), "{args:?}");
@@ -166,4 +167,30 @@ fn bad_usage_exits_2() {
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
         assert!(stderr(&o).starts_with("proctex: "), "{args:?}");
     }
+}
+
+#[test]
+fn morph_prints_valid_params_and_rejects_bad_t() {
+    let (a, b) = (tmp("morph-a.json"), tmp("morph-b.json"));
+    for (photo, out) in [
+        ("stk_rock_mountain_512.png", &a),
+        ("skimage_grass_512.png", &b),
+    ] {
+        assert!(
+            proctex(&["analyze", &sample(photo), "-o", out])
+                .status
+                .success()
+        );
+    }
+    let o = proctex(&["morph", &a, &b, "--t", "0.25"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let p = proctex::params::Params::from_json(&String::from_utf8_lossy(&o.stdout)).unwrap();
+    assert!(p.source.is_none());
+    assert_eq!(
+        proctex(&["morph", &a, &b, "--t", "1.5"]).status.code(),
+        Some(2)
+    );
+    assert_eq!(proctex(&["morph", &a, "--t", "0.5"]).status.code(), Some(2));
+    let o = proctex(&["morph", &a, &bad("text.png"), "--t", "0.5"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }

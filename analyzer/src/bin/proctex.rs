@@ -25,6 +25,7 @@ COMMANDS:
     synth     PHOTO → analysed texture rendered at exactly the photo's pixel size
     evaluate  texture distances between two images
     fidelity  synthesis-vs-photo distance ratios (the README's fidelity table)
+    morph     params JSON files → the texture a fraction t of the way through them
     help      this text; `proctex <COMMAND> --help` for a command
 
 Exit codes: 0 success, 1 bad input or failed operation, 2 bad usage.";
@@ -83,6 +84,13 @@ For each photo: splits it into left and right halves A and B, synthesises from e
 d(synthesis, other half), and their ratio (near 1: as close as another patch of the same
 material), and the floor: the same ratio for the patch's own spectrum with random phases,
 histogram-matched (the best any Gaussian model can do).";
+
+const MORPH_HELP: &str = "\
+proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
+
+Interpolates the textures (Lagae §8): everything linearly except the colour basis (quaternion
+slerp) and the scale (geometric); t in [0, 1] is spread evenly over the segments A→B→C…; the
+noise uses A's seed. Prints the params JSON (or writes OUT.json).";
 
 /// Minimal argument cursor: positional arguments and `--flag [value]` options.
 struct Args {
@@ -198,6 +206,48 @@ fn summary(p: &Params, ms: f64) -> String {
     s
 }
 
+fn read_params(path: &str) -> Result<Params> {
+    let text = String::from_utf8(read(path)?)
+        .map_err(|_| Error::params("(document)", format!("{path}: not UTF-8 text")))?;
+    Params::from_json(&text)
+}
+
+fn cmd_morph(mut a: Args) -> Result<()> {
+    let (mut files, mut t, mut out) = (Vec::new(), None, None);
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{MORPH_HELP}");
+                return Ok(());
+            }
+            "--t" => t = Some(a.parsed::<f32>(&arg)?),
+            "-o" | "--output" => out = Some(a.value(&arg)?),
+            f if f.starts_with('-') => return Err(usage(format!("morph: unknown option {f}"))),
+            _ => files.push(arg),
+        }
+    }
+    if files.len() < 2 {
+        return Err(usage("morph: give two or more params files"));
+    }
+    let t = t.ok_or_else(|| usage("morph: --t T is required"))?;
+    if !(0.0..=1.0).contains(&t) {
+        return Err(usage(format!("morph: --t {t} is not in [0, 1]")));
+    }
+    let keys = files
+        .iter()
+        .map(|f| read_params(f))
+        .collect::<Result<Vec<_>>>()?;
+    let text = proctex::morph::morph_path(&keys, t)?.to_json();
+    match out {
+        Some(path) => std::fs::write(&path, &text).map_err(|e| Error::Io {
+            path,
+            message: e.to_string(),
+        })?,
+        None => println!("{text}"),
+    }
+    Ok(())
+}
+
 fn cmd_analyze(mut a: Args) -> Result<()> {
     let mut o = Options::default();
     let (mut photo, mut out, mut json) = (None, None, false);
@@ -284,9 +334,7 @@ fn cmd_render(mut a: Args) -> Result<()> {
     let params_path =
         params_path.ok_or_else(|| usage("render: which params file? (proctex render PARAMS)"))?;
     let out = out.ok_or_else(|| usage("render: -o OUT.png is required"))?;
-    let text = String::from_utf8(read(&params_path)?)
-        .map_err(|_| Error::params("(document)", "not UTF-8 text"))?;
-    let mut params = Params::from_json(&text)?;
+    let mut params = read_params(&params_path)?;
     let (dw, dh) = params
         .source
         .as_ref()
@@ -471,6 +519,7 @@ fn main() -> ExitCode {
         "synth" => cmd_synth(args),
         "evaluate" => cmd_evaluate(args),
         "fidelity" => cmd_fidelity(args),
+        "morph" => cmd_morph(args),
         "help" | "-h" | "--help" => {
             println!("{MAIN_HELP}");
             Ok(())
