@@ -73,6 +73,9 @@ echo "wasm after wasm-opt: $size bytes (budget 4000000)"
 
 step "Playwright (e2e/, Chromium with SwiftShader WebGPU)"
 (cd e2e && npm ci --no-audit --no-fund)
+# A free port for the test server, so that another server (or another run) cannot collide.
+PROCTEX_E2E_PORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+export PROCTEX_E2E_PORT
 elog=$(mktemp)
 (cd e2e && npx playwright test) 2>&1 | grep -v '^\[WebServer\]' | tee "$elog"
 e2e_passed=$(sed -nE 's/^ *([0-9]+) passed.*/\1/p' "$elog" | tail -1)

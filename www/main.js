@@ -131,9 +131,35 @@ function imageFileOf(items) {
   return null;
 }
 
+const isJson = (file) => file.type === 'application/json' || /\.json$/i.test(file.name || '');
+
+// An image is analysed; a .json file (a presets library or a params document) is imported.
 async function loadFile(file) {
+  if (isJson(file)) {
+    wasm.importPresets(await file.text());
+    return true;
+  }
   const bytes = new Uint8Array(await file.arrayBuffer());
   return loadImage(bytes, file.name || 'pasted image');
+}
+
+const presetInput = document.createElement('input');
+presetInput.type = 'file';
+presetInput.accept = '.json,application/json';
+presetInput.style.display = 'none';
+document.body.appendChild(presetInput);
+presetInput.addEventListener('change', async () => {
+  const f = presetInput.files && presetInput.files[0];
+  if (f) wasm.importPresets(await f.text());
+  presetInput.value = '';
+});
+
+function downloadText(name, text) {
+  const url = URL.createObjectURL(new Blob([text], { type: 'application/json' }));
+  const a = document.createElement('a');
+  a.href = url; a.download = name;
+  document.body.appendChild(a); a.click(); a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
 
 const fileInput = document.createElement('input');
@@ -220,6 +246,8 @@ window.proctexHost = {
   loadSample: (name) => { window.proctex.loadSample(name); },
   analyseCrop: (x, y, w, h, seed) => { cropNext = { crop: [x, y, w, h], seed }; pumpCrop(); },
   modelStats: (params) => { statsNext = params; pumpStats(); },
+  downloadText,
+  openPresets: () => presetInput.click(),
 };
 
 window.proctex = {
@@ -236,6 +264,8 @@ window.proctex = {
   setFlatShader: (on) => wasm.setFlatShader(on),
   state: () => JSON.parse(wasm.state()),
   requestRepaint: () => wasm.requestRepaint(),
+  importPresets: (text) => wasm.importPresets(text),
+  getPresets: () => wasm.getPresets() ?? null,
   lastTimings: () => lastTimings,
 };
 

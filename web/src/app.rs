@@ -18,6 +18,7 @@ use proctex::solid::{Orbit, Shape, SolidView};
 use wasm_bindgen::JsValue;
 
 use crate::jobs::{ImageStats, Report};
+use crate::presets::{MorphPreset, Preset, STORAGE_KEY, library_json, parse_library};
 use crate::renderer::{Pass, TextureRenderer};
 
 /// Something JS asked for, applied at the start of the next frame.
@@ -56,6 +57,8 @@ pub enum Command {
     SetMode(ViewMode),
     /// Draw the plane view with the trivial shader (benchmark baseline).
     FlatShader(bool),
+    /// Add the presets of a library file (validated as a whole first).
+    ImportPresets(String),
 }
 
 /// A downscaled copy of the photo for the crop panel and the split view.
@@ -154,6 +157,12 @@ pub struct Snapshot {
     pub period_lines: usize,
     /// The plots show the model's statistics for the current params.
     pub plots_current: bool,
+    /// Names of the presets, in list order.
+    pub presets: Vec<String>,
+    /// The morph being shown: t, or `None` when no morph is active.
+    pub morph_t: Option<f32>,
+    /// The morph animation is playing.
+    pub morph_playing: bool,
     /// Undo/redo depths.
     pub undo: usize,
     /// Redo depth.
@@ -267,6 +276,26 @@ pub struct ProctexApp {
     last_edit_ms: f64,
     frame: u64,
     widgets: BTreeMap<String, [f32; 4]>,
+    presets: PresetsState,
+    status_note: Option<String>,
+}
+
+/// The presets list, its thumbnails and the morph between presets.
+#[derive(Default)]
+struct PresetsState {
+    list: Vec<Preset>,
+    /// Thumbnails, parallel to `list` (rendered from the params on demand).
+    thumbs: Vec<Option<egui::TextureHandle>>,
+    /// Chosen as morph keys, parallel to `list`.
+    selected: Vec<bool>,
+    new_name: String,
+    renaming: Option<(usize, String)>,
+    /// The morph being shown (keys, t); `None`: the params are edited directly.
+    morph: Option<Vec<Params>>,
+    t: f32,
+    playing: bool,
+    looping: bool,
+    duration_s: f32,
 }
 
 impl ProctexApp {
@@ -302,6 +331,62 @@ impl ProctexApp {
             last_edit_ms: 0.0,
             frame: 0,
             widgets: BTreeMap::new(),
+            status_note: None,
+            presets: PresetsState {
+                duration_s: 4.0,
+                looping: true,
+                ..PresetsState::default()
+            },
+        }
+        .with_stored_presets()
+    }
+
+    /// Loads the presets from `localStorage`. An unreadable stored library is moved aside to a
+    /// backup key (never deleted) and reported.
+    fn with_stored_presets(mut self) -> Self {
+        let Some(storage) = web_sys::window().and_then(|w| w.local_storage().ok().flatten()) else {
+            self.error = Some(
+                "Presets: this browser gives the page no storage; presets will not persist".into(),
+            );
+            return self;
+        };
+        if let Ok(Some(text)) = storage.get_item(STORAGE_KEY) {
+            match parse_library(&text) {
+                Ok(list) => self.set_presets(list),
+                Err(e) => {
+                    let backup = format!("{STORAGE_KEY}.unreadable-{}", js_sys::Date::now() as u64);
+                    let _ = storage.set_item(&backup, &text);
+                    self.error = Some(format!(
+                        "The stored presets could not be read ({e}); they were kept under the storage key {backup}"
+                    ));
+                }
+            }
+        }
+        self
+    }
+
+    fn set_presets(&mut self, list: Vec<Preset>) {
+        let n = list.len();
+        self.presets.list = list;
+        self.presets.thumbs = vec![None; n];
+        self.presets.selected = vec![false; n];
+        self.presets.renaming = None;
+    }
+
+    /// Writes the library to `localStorage`. A failed write (full quota) leaves the stored
+    /// library as it was; the presets stay in memory and the user is told to export them.
+    fn persist_presets(&mut self) {
+        let text = library_json(&self.presets.list);
+        let ok = web_sys::window()
+            .and_then(|w| w.local_storage().ok().flatten())
+            .map(|s| s.set_item(STORAGE_KEY, &text).is_ok())
+            .unwrap_or(false);
+        if !ok {
+            self.error = Some(
+                "Presets could not be saved (browser storage full or unavailable): the previously \
+                 saved presets are unchanged; use Export… to keep the current ones"
+                    .into(),
+            );
         }
     }
 
@@ -403,12 +488,30 @@ impl ProctexApp {
                 }
                 Command::SetMode(m) => self.mode = m,
                 Command::FlatShader(on) => self.flat_shader = on,
+                Command::ImportPresets(text) => match parse_library(&text) {
+                    Ok(new) => {
+                        let mut list = std::mem::take(&mut self.presets.list);
+                        let added = new.len();
+                        list.extend(new);
+                        self.set_presets(list);
+                        self.persist_presets();
+                        self.status_note = Some(format!("Imported {added} presets"));
+                    }
+                    Err(e) => {
+                        self.error = Some(format!("Import: {e}. Your presets are unchanged."));
+                    }
+                },
             }
         }
     }
 
     /// Undo bookkeeping: once no widget is being dragged, a changed params set is one step.
     fn commit_edits(&mut self, ctx: &egui::Context) {
+        if self.presets.playing {
+            // An animation is not an edit.
+            self.committed = self.params.clone();
+            return;
+        }
         if ctx.dragged_id().is_some() {
             return;
         }
@@ -508,8 +611,273 @@ impl ProctexApp {
                 self.error = None;
             }
         }
+        if let Some(note) = &self.status_note {
+            ui.label(note.as_str());
+        }
         ui.separator();
-        self.plots(ui);
+        egui::CollapsingHeader::new("Presets and morph")
+            .default_open(true)
+            .show(ui, |ui| self.presets_panel(ui));
+        egui::CollapsingHeader::new("Plots")
+            .default_open(true)
+            .show(ui, |ui| self.plots(ui));
+    }
+
+    /// Save, load, rename, reorder, delete presets; choose two or more to morph between.
+    fn presets_panel(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        ui.horizontal(|ui| {
+            let r = ui.add(
+                egui::TextEdit::singleline(&mut self.presets.new_name)
+                    .hint_text("name")
+                    .desired_width(120.0),
+            );
+            self.record("preset.name", &r);
+            let r = ui.add_enabled(self.params.is_some(), egui::Button::new("Save preset"));
+            self.record("preset.save", &r);
+            if r.clicked()
+                && let Some(p) = self.params.clone()
+            {
+                let name = match self.presets.new_name.trim() {
+                    "" => self
+                        .photo
+                        .as_ref()
+                        .map(|p| p.name.trim_end_matches(".png").to_string())
+                        .unwrap_or_else(|| format!("preset {}", self.presets.list.len() + 1)),
+                    n => n.to_string(),
+                };
+                let mut list = std::mem::take(&mut self.presets.list);
+                list.push(Preset {
+                    name,
+                    params: p,
+                    morph: None,
+                });
+                self.set_presets(list);
+                self.presets.new_name.clear();
+                self.persist_presets();
+            }
+        });
+        ui.horizontal(|ui| {
+            let r = ui.small_button("Export…");
+            self.record("presets.export", &r);
+            if r.clicked() {
+                host(
+                    "downloadText",
+                    &[
+                        JsValue::from_str("proctex-presets.json"),
+                        JsValue::from_str(&library_json(&self.presets.list)),
+                    ],
+                );
+            }
+            let r = ui.small_button("Import…");
+            self.record("presets.import", &r);
+            if r.clicked() {
+                host("openPresets", &[]);
+            }
+        });
+        let mut action: Option<(usize, &'static str)> = None;
+        let n = self.presets.list.len();
+        for i in 0..n {
+            if self.presets.thumbs[i].is_none() {
+                let rgba = crate::jobs::preview_rgba(&self.presets.list[i].params, 40, 40);
+                let img = egui::ColorImage::from_rgba_unmultiplied([40, 40], &rgba);
+                self.presets.thumbs[i] =
+                    Some(ctx.load_texture(format!("preset{i}"), img, egui::TextureOptions::LINEAR));
+            }
+            let thumb = self.presets.thumbs[i].as_ref().map(|t| t.id());
+            ui.horizontal(|ui| {
+                let r = ui.checkbox(&mut self.presets.selected[i], "");
+                self.record(format!("preset.{i}.morph"), &r);
+                if let Some(id) = thumb {
+                    ui.image((id, egui::vec2(24.0, 24.0)));
+                }
+                if let Some((j, text)) = self.presets.renaming.as_mut()
+                    && *j == i
+                {
+                    let r = ui.add(egui::TextEdit::singleline(text).desired_width(110.0));
+                    self.record(format!("preset.{i}.name"), &r);
+                    if r.lost_focus() {
+                        action = Some((i, "renamed"));
+                    }
+                } else {
+                    let label = match &self.presets.list[i].morph {
+                        Some(_) => format!("⟷ {}", self.presets.list[i].name),
+                        None => self.presets.list[i].name.clone(),
+                    };
+                    let label = if label.chars().count() > 22 {
+                        format!("{}…", label.chars().take(21).collect::<String>())
+                    } else {
+                        label
+                    };
+                    let r = ui.selectable_label(false, label).on_hover_text("Load");
+                    self.record(format!("preset.{i}"), &r);
+                    if r.clicked() {
+                        action = Some((i, "load"));
+                    }
+                }
+                for (what, icon) in [
+                    ("rename", "✏"),
+                    ("up", "↑"),
+                    ("down", "↓"),
+                    ("delete", "del"),
+                ] {
+                    let r = ui.small_button(icon).on_hover_text(what);
+                    self.record(format!("preset.{i}.{what}"), &r);
+                    if r.clicked() {
+                        action = Some((i, what));
+                    }
+                }
+            });
+        }
+        if let Some((i, what)) = action {
+            self.preset_action(i, what);
+        }
+        self.morph_controls(ui);
+    }
+
+    fn preset_action(&mut self, i: usize, what: &str) {
+        let mut list = self.presets.list.clone();
+        match what {
+            "load" => {
+                let p = &self.presets.list[i];
+                match &p.morph {
+                    Some(m) => {
+                        self.presets.morph = Some(m.keys.clone());
+                        self.presets.duration_s = m.duration_s;
+                        self.presets.t = 0.0;
+                        self.params = Some(m.keys[0].clone());
+                    }
+                    None => {
+                        self.presets.morph = None;
+                        self.params = Some(p.params.clone());
+                    }
+                }
+                return;
+            }
+            "rename" => {
+                self.presets.renaming = Some((i, list[i].name.clone()));
+                return;
+            }
+            "renamed" => {
+                if let Some((_, name)) = self.presets.renaming.take()
+                    && !name.trim().is_empty()
+                {
+                    list[i].name = name.trim().to_string();
+                }
+            }
+            "up" if i > 0 => list.swap(i, i - 1),
+            "down" if i + 1 < list.len() => list.swap(i, i + 1),
+            "delete" => {
+                list.remove(i);
+            }
+            _ => return,
+        }
+        let selected = self.presets.selected.clone();
+        self.set_presets(list);
+        if what == "renamed" {
+            self.presets.selected = selected;
+        }
+        self.persist_presets();
+    }
+
+    /// The morph: t slider, play/loop, duration, save as a preset.
+    fn morph_controls(&mut self, ui: &mut egui::Ui) {
+        let chosen: Vec<Params> = self
+            .presets
+            .list
+            .iter()
+            .zip(&self.presets.selected)
+            .filter(|(_, s)| **s)
+            .map(|(p, _)| p.params.clone())
+            .collect();
+        if chosen.len() >= 2 && self.presets.morph.as_ref() != Some(&chosen) {
+            self.presets.morph = Some(chosen);
+            self.presets.t = 0.0;
+            self.apply_morph();
+        }
+        let Some(keys) = self.presets.morph.clone() else {
+            ui.label("Tick two or more presets to morph between them.");
+            return;
+        };
+        ui.label(format!("Morph through {} presets (Lagae §8)", keys.len()));
+        let r = ui.add(egui::Slider::new(&mut self.presets.t, 0.0..=1.0).text("t"));
+        self.record("morph.t", &r);
+        if r.changed() {
+            self.presets.playing = false;
+            self.apply_morph();
+        }
+        ui.horizontal(|ui| {
+            let label = if self.presets.playing {
+                "Pause"
+            } else {
+                "Play"
+            };
+            let r = ui.button(label);
+            self.record("morph.play", &r);
+            if r.clicked() {
+                self.presets.playing = !self.presets.playing;
+            }
+            ui.checkbox(&mut self.presets.looping, "loop");
+            ui.add(
+                egui::DragValue::new(&mut self.presets.duration_s)
+                    .range(0.5..=600.0)
+                    .suffix(" s"),
+            );
+        });
+        ui.horizontal(|ui| {
+            let r = ui.small_button("Save morph");
+            self.record("morph.save", &r);
+            if r.clicked() {
+                let mut list = self.presets.list.clone();
+                list.push(Preset {
+                    name: format!("morph of {}", keys.len()),
+                    params: keys[0].clone(),
+                    morph: Some(MorphPreset {
+                        keys: keys.clone(),
+                        duration_s: self.presets.duration_s,
+                    }),
+                });
+                self.set_presets(list);
+                self.persist_presets();
+            }
+            let r = ui.small_button("Stop morphing");
+            self.record("morph.stop", &r);
+            if r.clicked() {
+                self.presets.morph = None;
+                self.presets.playing = false;
+                self.presets.selected.iter_mut().for_each(|s| *s = false);
+            }
+        });
+    }
+
+    /// Sets the params to the morph at the current t (a uniform update only).
+    fn apply_morph(&mut self) {
+        if let Some(keys) = &self.presets.morph {
+            match proctex::morph::morph_path(keys, self.presets.t) {
+                Ok(p) => self.params = Some(p),
+                Err(e) => self.error = Some(format!("Morph: {e}")),
+            }
+        }
+    }
+
+    /// Advances a playing morph by the frame time.
+    fn advance_morph(&mut self, ctx: &egui::Context) {
+        if !self.presets.playing || self.presets.morph.is_none() {
+            return;
+        }
+        let dt = ctx.input(|i| i.stable_dt).min(0.25);
+        let mut t = self.presets.t + dt / self.presets.duration_s.max(0.1);
+        if t >= 1.0 {
+            if self.presets.looping {
+                t -= 1.0;
+            } else {
+                t = 1.0;
+                self.presets.playing = false;
+            }
+        }
+        self.presets.t = t;
+        self.apply_morph();
+        ctx.request_repaint();
     }
 
     /// The photo with the crop rectangle: drag inside to move it, at a corner to resize, outside
@@ -1170,6 +1538,9 @@ impl ProctexApp {
                 period_outline: self.period_outline,
                 period_lines: self.period_lines,
                 plots_current: self.plots_current(),
+                presets: self.presets.list.iter().map(|p| p.name.clone()).collect(),
+                morph_t: self.presets.morph.as_ref().map(|_| self.presets.t),
+                morph_playing: self.presets.playing,
                 undo: self.undo.len(),
                 redo: self.redo.len(),
             }
@@ -1220,6 +1591,7 @@ impl eframe::App for ProctexApp {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| self.view_panel(ui));
+        self.advance_morph(&ctx);
         self.commit_edits(&ctx);
         self.request_stats(&ctx);
         self.publish();

@@ -3,6 +3,7 @@
 //! compare its pixels with the CPU reference renderer.
 
 pub mod jobs;
+pub mod presets;
 pub mod renderer;
 
 #[cfg(target_arch = "wasm32")]

@@ -142,6 +142,21 @@ pub fn set_view_mode(mode: String) -> Result<(), JsValue> {
     Ok(())
 }
 
+/// Adds the presets of a library file (or one params document); a bad file shows an error and
+/// changes nothing.
+#[wasm_bindgen(js_name = importPresets)]
+pub fn import_presets(text: String) {
+    send(Command::ImportPresets(text));
+}
+
+/// The presets library as JSON (`proctex-presets/1`), as stored.
+#[wasm_bindgen(js_name = getPresets)]
+pub fn get_presets() -> Option<String> {
+    web_sys::window()
+        .and_then(|w| w.local_storage().ok().flatten())
+        .and_then(|s| s.get_item(crate::presets::STORAGE_KEY).ok().flatten())
+}
+
 /// Benchmarks: draw the plane view with the trivial mean-colour shader instead.
 #[wasm_bindgen(js_name = setFlatShader)]
 pub fn set_flat_shader(on: bool) {

@@ -1,0 +1,67 @@
+// Presets: saved with the mouse, they survive a reload; a corrupt import changes nothing; the
+// morph between two presets follows the t slider dragged with the mouse.
+const { test } = require('@playwright/test');
+const { expect, openApp, state, waitFrames, clickWidget, waitAnalyses } = require('./helpers');
+
+const core = (p) => ({ colour: p.colour, transform: p.transform, model: p.model, seed: p.seed });
+
+test('presets survive a reload and a corrupt import leaves them untouched', async ({ page }) => {
+  await openApp(page);
+  await clickWidget(page, 'preset.save');
+  await page.waitForFunction(() => window.proctex.state().presets.length === 1);
+  const stored = await page.evaluate(() => window.proctex.getPresets());
+  expect(JSON.parse(stored).presets[0].name).toBe('stk_rock_mountain_512');
+
+  await page.reload();
+  await page.waitForFunction(() => window.proctex && window.proctex.ready, null, { timeout: 120_000 });
+  await waitFrames(page, 2);
+  expect((await state(page)).presets).toEqual(['stk_rock_mountain_512']);
+
+  const corrupt = JSON.stringify({
+    format: 'proctex-presets/1',
+    presets: [{ name: 'broken', params: { format: 'proctex/1', seed: 1 } }],
+  });
+  await page.evaluate((t) => window.proctex.importPresets(t), corrupt);
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().error !== null;
+  });
+  const s = await state(page);
+  expect(s.error).toContain('Import');
+  expect(s.error).toContain('presets[0] (broken)');
+  expect(s.presets).toEqual(['stk_rock_mountain_512']);
+  expect(await page.evaluate(() => window.proctex.getPresets())).toBe(stored);
+});
+
+test('morphing two presets follows the t slider', async ({ page }) => {
+  await openApp(page);
+  const rock = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  await clickWidget(page, 'preset.save');
+  const n = (await state(page)).analyses;
+  await clickWidget(page, 'sample.2'); // grass
+  await waitAnalyses(page, n + 1);
+  const grass = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  await clickWidget(page, 'preset.save');
+  await page.waitForFunction(() => window.proctex.state().presets.length === 2);
+  await clickWidget(page, 'preset.0.morph');
+  await clickWidget(page, 'preset.1.morph');
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().morph_t === 0;
+  });
+  expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).toEqual(core(rock));
+  // Drag the t slider's knob to the right end with the mouse.
+  const [x, y, , h] = (await state(page)).widgets['morph.t'];
+  await page.mouse.move(x + 3, y + h / 2);
+  await page.mouse.down();
+  await page.mouse.move(x + 50, y + h / 2, { steps: 4 });
+  await waitFrames(page, 1);
+  const mid = await state(page);
+  expect(mid.morph_t).toBeGreaterThan(0.2);
+  expect(mid.morph_t).toBeLessThan(0.8);
+  await page.mouse.move(x + 200, y + h / 2, { steps: 4 });
+  await page.mouse.up();
+  await waitFrames(page, 2);
+  expect((await state(page)).morph_t).toBe(1);
+  expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).toEqual(core(grass));
+});
