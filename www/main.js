@@ -133,12 +133,44 @@ function imageFileOf(items) {
 
 const isJson = (file) => file.type === 'application/json' || /\.json$/i.test(file.name || '');
 
-// An image is analysed; a .json file (a presets library or a params document) is imported.
-async function loadFile(file) {
-  if (isJson(file)) {
-    wasm.importPresets(await file.text());
+// JSON text from a file, a drop or a paste: a params document replaces the params, a presets
+// library adds its presets; anything else is reported.
+function importJson(text, what) {
+  let doc;
+  try { doc = JSON.parse(text); } catch (e) {
+    wasm.reportError(`${what}: not JSON (${e.message})`);
+    return false;
+  }
+  if (doc && doc.format === 'proctex/1') {
+    try { wasm.setParams(text); } catch (e) {
+      wasm.reportError(`${what}: ${e}`);
+      return false;
+    }
     return true;
   }
+  wasm.importPresets(text); // a library, or an error message naming what is wrong
+  return true;
+}
+
+// Share links: the params JSON, base64url, in the fragment (#p=…).
+function shareLink(json) {
+  const bytes = new TextEncoder().encode(json);
+  let bin = '';
+  for (const b of bytes) bin += String.fromCharCode(b);
+  const b64 = btoa(bin).replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
+  return `${location.origin}${location.pathname}#p=${b64}`;
+}
+function paramsFromFragment() {
+  const m = /^#p=([A-Za-z0-9_-]+)$/.exec(location.hash);
+  if (!m) return null;
+  const b64 = m[1].replace(/-/g, '+').replace(/_/g, '/');
+  const bin = atob(b64 + '='.repeat((4 - (b64.length % 4)) % 4));
+  return new TextDecoder().decode(Uint8Array.from(bin, (c) => c.charCodeAt(0)));
+}
+
+// An image is analysed; a .json file (params or a presets library) is imported.
+async function loadFile(file) {
+  if (isJson(file)) return importJson(await file.text(), file.name);
   const bytes = new Uint8Array(await file.arrayBuffer());
   return loadImage(bytes, file.name || 'pasted image');
 }
@@ -187,7 +219,9 @@ function installPhotoInputs() {
   }, true);
   document.addEventListener('paste', (e) => {
     const file = imageFileOf(e.clipboardData && e.clipboardData.items);
-    if (file) { e.preventDefault(); loadFile(file); }
+    if (file) { e.preventDefault(); loadFile(file); return; }
+    const text = e.clipboardData && e.clipboardData.getData('text/plain');
+    if (text && text.trim().startsWith('{')) { e.preventDefault(); importJson(text, 'pasted text'); }
   });
 }
 
@@ -248,6 +282,11 @@ window.proctexHost = {
   modelStats: (params) => { statsNext = params; pumpStats(); },
   downloadText,
   openPresets: () => presetInput.click(),
+  copyShareLink: (json) => {
+    const link = shareLink(json);
+    window.proctex.lastShareLink = link;
+    if (navigator.clipboard) navigator.clipboard.writeText(link).catch(() => {});
+  },
 };
 
 window.proctex = {
@@ -265,6 +304,7 @@ window.proctex = {
   state: () => JSON.parse(wasm.state()),
   requestRepaint: () => wasm.requestRepaint(),
   importPresets: (text) => wasm.importPresets(text),
+  shareLink: () => { const p = wasm.getParams(); return p ? shareLink(p) : null; },
   getPresets: () => wasm.getPresets() ?? null,
   lastTimings: () => lastTimings,
 };
@@ -314,7 +354,30 @@ async function main() {
   }, 500);
   installPhotoInputs();
   await window.proctex.loadSample(DEFAULT_SAMPLE);
+  // A share link: the texture in the fragment replaces the sample's params.
+  if (location.hash.startsWith('#p=')) {
+    let text = null;
+    try { text = paramsFromFragment(); } catch (e) { /* reported below */ }
+    if (text === null) wasm.reportError('This link does not hold a readable texture (#p=…).');
+    else importJson(text, 'the link');
+  }
   window.proctex.ready = true;
+  buildGallery();
+}
+
+// The built-in preset gallery: every shipped sample, analysed in the worker after start-up.
+async function buildGallery() {
+  for (const name of SAMPLES) {
+    try {
+      const bytes = await fetchBytes(`samples/${name}`);
+      const [, reply] = job({ type: 'analyseOnly', bytes, name }, [bytes.buffer]);
+      const m = await reply;
+      if (m.type === 'params') wasm.addGalleryPreset(name.replace(/\.png$/, ''), m.params);
+    } catch (e) {
+      console.warn(`gallery: ${name}: ${e}`);
+    }
+  }
+  window.proctex.galleryReady = true;
 }
 
 main().catch((e) => show(`Proctex could not start: ${e}`, true));

@@ -82,6 +82,15 @@ async function handle(m) {
       }
       return;
     }
+    case 'analyseOnly': {
+      // A sample for the preset gallery: analysed, not made the current photo.
+      const bitmap = await decode(m.bytes);
+      const rgba = pixelsOf(bitmap);
+      const report = wasm.analyzeRgba(rgba, bitmap.width, bitmap.height, new Uint32Array(0), 1);
+      bitmap.close();
+      postMessage({ type: 'params', id: m.id, params: JSON.stringify(JSON.parse(report).params) });
+      return;
+    }
     case 'crop': {
       if (!photo) throw new Error('no photo to crop');
       const report = wasm.analyzeRgba(photo.rgba, photo.width, photo.height,

@@ -65,3 +65,61 @@ test('morphing two presets follows the t slider', async ({ page }) => {
   expect((await state(page)).morph_t).toBe(1);
   expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).toEqual(core(grass));
 });
+
+test('a share link restores the texture; params JSON pasted or dropped is re-imported', async ({ page, context }) => {
+  await openApp(page);
+  const p = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  p.colour.contrast = 1.7;
+  p.transform.rotation_deg = 21;
+  const edited = JSON.stringify(p, null, 2);
+  await page.evaluate((j) => window.proctex.setParams(j), edited);
+  await waitFrames(page, 2);
+  const link = await page.evaluate(() => window.proctex.shareLink());
+  expect(link).toMatch(/#p=[A-Za-z0-9_-]+$/);
+
+  const other = await context.newPage();
+  await other.goto(link);
+  await other.waitForFunction(() => window.proctex && window.proctex.ready, null, { timeout: 120_000 });
+  await waitFrames(other, 3);
+  expect(core(JSON.parse(await other.evaluate(() => window.proctex.getParams())))).toEqual(core(p));
+  await other.close();
+
+  // Paste the JSON text, then drop it as a file: each time the params come back.
+  for (const how of ['paste', 'drop']) {
+    await page.evaluate(() => window.proctex.loadSample('skimage_grass_512.png'));
+    await waitFrames(page, 2);
+    expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).not.toEqual(core(p));
+    await page.evaluate(([j, h]) => {
+      const dt = new DataTransfer();
+      if (h === 'paste') {
+        dt.setData('text/plain', j);
+        document.dispatchEvent(new ClipboardEvent('paste', { clipboardData: dt, bubbles: true, cancelable: true }));
+      } else {
+        dt.items.add(new File([j], 'texture.json', { type: 'application/json' }));
+        document.getElementById('proctex_canvas').dispatchEvent(
+          new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+      }
+    }, [edited, how]);
+    await page.waitForFunction((c) => {
+      window.proctex.requestRepaint();
+      return JSON.parse(window.proctex.getParams()).colour.contrast === c;
+    }, 1.7, { polling: 100 });
+    expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).toEqual(core(p));
+  }
+});
+
+test('the built-in gallery holds every sample and loads its analysis', async ({ page }) => {
+  await openApp(page);
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    return window.proctex.galleryReady && window.proctex.state().gallery.length === 6;
+  }, null, { polling: 200, timeout: 120_000 });
+  await waitFrames(page, 2);
+  expect((await state(page)).gallery[4]).toBe('skimage_brick_512');
+  await clickWidget(page, 'gallery.4');
+  const fromGallery = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  const n = (await state(page)).analyses;
+  await page.evaluate(() => window.proctex.loadSample('skimage_brick_512.png'));
+  await waitAnalyses(page, n + 1);
+  expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).toEqual(core(fromGallery));
+});

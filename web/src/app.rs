@@ -59,6 +59,8 @@ pub enum Command {
     FlatShader(bool),
     /// Add the presets of a library file (validated as a whole first).
     ImportPresets(String),
+    /// A built-in gallery preset (a shipped sample's analysis).
+    GalleryPreset(String, Box<Params>),
 }
 
 /// A downscaled copy of the photo for the crop panel and the split view.
@@ -159,6 +161,8 @@ pub struct Snapshot {
     pub plots_current: bool,
     /// Names of the presets, in list order.
     pub presets: Vec<String>,
+    /// Names of the built-in gallery presets.
+    pub gallery: Vec<String>,
     /// The morph being shown: t, or `None` when no morph is active.
     pub morph_t: Option<f32>,
     /// The morph animation is playing.
@@ -288,6 +292,8 @@ struct PresetsState {
     thumbs: Vec<Option<egui::TextureHandle>>,
     /// Chosen as morph keys, parallel to `list`.
     selected: Vec<bool>,
+    /// The built-in gallery: the shipped samples' analyses, with thumbnails.
+    gallery: Vec<(Preset, Option<egui::TextureHandle>)>,
     new_name: String,
     renaming: Option<(usize, String)>,
     /// The morph being shown (keys, t); `None`: the params are edited directly.
@@ -488,6 +494,16 @@ impl ProctexApp {
                 }
                 Command::SetMode(m) => self.mode = m,
                 Command::FlatShader(on) => self.flat_shader = on,
+                Command::GalleryPreset(name, params) => {
+                    self.presets.gallery.push((
+                        Preset {
+                            name,
+                            params: *params,
+                            morph: None,
+                        },
+                        None,
+                    ));
+                }
                 Command::ImportPresets(text) => match parse_library(&text) {
                     Ok(new) => {
                         let mut list = std::mem::take(&mut self.presets.list);
@@ -658,6 +674,34 @@ impl ProctexApp {
             }
         });
         ui.horizontal(|ui| {
+            let json = self.params.as_ref().map(Params::to_json);
+            let r = ui
+                .add_enabled(json.is_some(), egui::Button::new("Params JSON…").small())
+                .on_hover_text("Download the current params (proctex/1); drop or paste it back");
+            self.record("params.download", &r);
+            if r.clicked()
+                && let Some(j) = &json
+            {
+                host(
+                    "downloadText",
+                    &[
+                        JsValue::from_str("proctex-texture.json"),
+                        JsValue::from_str(j),
+                    ],
+                );
+            }
+            let r = ui
+                .add_enabled(json.is_some(), egui::Button::new("Copy link").small())
+                .on_hover_text("Copy a link that opens this texture (params in the URL fragment)");
+            self.record("params.link", &r);
+            if r.clicked()
+                && let Some(j) = &json
+            {
+                host("copyShareLink", &[JsValue::from_str(j)]);
+                self.status_note = Some("Link copied to the clipboard".into());
+            }
+        });
+        ui.horizontal(|ui| {
             let r = ui.small_button("Export…");
             self.record("presets.export", &r);
             if r.clicked() {
@@ -675,6 +719,48 @@ impl ProctexApp {
                 host("openPresets", &[]);
             }
         });
+        if !self.presets.gallery.is_empty() {
+            ui.label("Gallery (the samples, analysed):");
+            let mut load = None;
+            ui.horizontal_wrapped(|ui| {
+                for i in 0..self.presets.gallery.len() {
+                    let (preset, thumb) = &mut self.presets.gallery[i];
+                    let id = thumb
+                        .get_or_insert_with(|| {
+                            let rgba = crate::jobs::preview_rgba(&preset.params, 40, 40);
+                            let img = egui::ColorImage::from_rgba_unmultiplied([40, 40], &rgba);
+                            ctx.load_texture(
+                                format!("gallery{i}"),
+                                img,
+                                egui::TextureOptions::LINEAR,
+                            )
+                        })
+                        .id();
+                    let name = preset.name.clone();
+                    let r = ui
+                        .add(egui::Button::image((id, egui::vec2(32.0, 32.0))))
+                        .on_hover_text(format!("{name}: click to load"));
+                    self.record(format!("gallery.{i}"), &r);
+                    if r.clicked() {
+                        load = Some(i);
+                    }
+                }
+                let r = ui
+                    .small_button("+ to presets")
+                    .on_hover_text("Copy the gallery into your presets (to rename, morph, export)");
+                self.record("gallery.add", &r);
+                if r.clicked() {
+                    let mut list = std::mem::take(&mut self.presets.list);
+                    list.extend(self.presets.gallery.iter().map(|(p, _)| p.clone()));
+                    self.set_presets(list);
+                    self.persist_presets();
+                }
+            });
+            if let Some(i) = load {
+                self.presets.morph = None;
+                self.params = Some(self.presets.gallery[i].0.params.clone());
+            }
+        }
         let mut action: Option<(usize, &'static str)> = None;
         let n = self.presets.list.len();
         for i in 0..n {
@@ -1539,6 +1625,12 @@ impl ProctexApp {
                 period_lines: self.period_lines,
                 plots_current: self.plots_current(),
                 presets: self.presets.list.iter().map(|p| p.name.clone()).collect(),
+                gallery: self
+                    .presets
+                    .gallery
+                    .iter()
+                    .map(|(p, _)| p.name.clone())
+                    .collect(),
                 morph_t: self.presets.morph.as_ref().map(|_| self.presets.t),
                 morph_playing: self.presets.playing,
                 undo: self.undo.len(),

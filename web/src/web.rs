@@ -149,6 +149,14 @@ pub fn import_presets(text: String) {
     send(Command::ImportPresets(text));
 }
 
+/// Adds a built-in gallery preset (the page analyses the shipped samples in the worker).
+#[wasm_bindgen(js_name = addGalleryPreset)]
+pub fn add_gallery_preset(name: String, params_json: String) -> Result<(), JsValue> {
+    let p = Params::from_json(&params_json).map_err(js_error)?;
+    send(Command::GalleryPreset(name, Box::new(p)));
+    Ok(())
+}
+
 /// The presets library as JSON (`proctex-presets/1`), as stored.
 #[wasm_bindgen(js_name = getPresets)]
 pub fn get_presets() -> Option<String> {
