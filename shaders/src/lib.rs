@@ -29,22 +29,54 @@ pub fn plane_shader() -> String {
     [texture_library().as_str(), PLANE].join("\n")
 }
 
+/// Baking the noise tile from the seed on the GPU (exported snippets).
+pub const BAKE: &str = include_str!("../bake.wgsl");
+
+/// The constants `bake.wgsl` needs: tile side, hash seed and stream, the odd shift of the
+/// even/odd fix, and the CPU-measured normalisation (`noise::Tile::stats`).
+pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: f64, inv_sd: f64) -> String {
+    let mut offset = n / 2;
+    if offset.is_multiple_of(2) {
+        offset += 1;
+    }
+    format!(
+        "const N: u32 = {n}u;\nconst TILE_SEED: u32 = {seed}u;\nconst TILE_STREAM: u32 = {stream}u;\n\
+         const TILE_ODD_OFFSET: u32 = {offset}u;\nconst TILE_MEAN: f32 = {:?};\n\
+         const TILE_INV_SD: f32 = {:?};\n",
+        mean as f32, inv_sd as f32
+    )
+}
+
+/// The tile-baking shader for the given constants (entry points `vs_bake`, `fs_bake_down_x`,
+/// `fs_bake_down_y`, `fs_bake_tile`).
+pub fn bake_shader(constants: &str) -> String {
+    [constants, BAKE].join("\n")
+}
+
 /// The solid view shader (entry points `vs_solid`, `fs_solid`).
 pub fn solid_shader() -> String {
     [texture_library().as_str(), SOLID].join("\n")
 }
 
 /// Every WGSL file: (name, source).
-pub const FILES: [(&str, &str); 6] = [
+pub const FILES: [(&str, &str); 7] = [
     ("params.wgsl", PARAMS),
     ("noise.wgsl", NOISE),
     ("histogram.wgsl", HISTOGRAM),
     ("texture.wgsl", TEXTURE),
     ("plane.wgsl", PLANE),
     ("solid.wgsl", SOLID),
+    ("bake.wgsl", BAKE),
 ];
 
 /// Every complete shader: (name, source).
 pub fn shaders() -> Vec<(&'static str, String)> {
-    vec![("plane", plane_shader()), ("solid", solid_shader())]
+    vec![
+        ("plane", plane_shader()),
+        ("solid", solid_shader()),
+        (
+            "bake",
+            bake_shader(&bake_constants(128, 1, 0x7431_3244, 0.01, 1.9)),
+        ),
+    ]
 }

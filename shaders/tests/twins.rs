@@ -2,22 +2,35 @@
 
 /// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
 /// the same name, except for the ones listed in `RENAMED`.
-const TWIN_FILES: [(&str, &str); 5] = [
-    ("noise.wgsl", "analyzer/src/noise.rs"),
-    ("histogram.wgsl", "analyzer/src/histogram.rs"),
-    ("texture.wgsl", "analyzer/src/render.rs"),
-    ("plane.wgsl", "analyzer/src/render.rs"),
-    ("solid.wgsl", "analyzer/src/solid.rs"),
+const TWIN_FILES: [(&str, &[&str]); 6] = [
+    ("noise.wgsl", &["analyzer/src/noise.rs"]),
+    ("histogram.wgsl", &["analyzer/src/histogram.rs"]),
+    ("texture.wgsl", &["analyzer/src/render.rs"]),
+    ("plane.wgsl", &["analyzer/src/render.rs"]),
+    ("solid.wgsl", &["analyzer/src/solid.rs"]),
+    (
+        "bake.wgsl",
+        &["analyzer/src/rng.rs", "analyzer/src/noise.rs"],
+    ),
 ];
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 5] = [
+const RENAMED: [(&str, &str); 12] = [
     ("vs_main", "render_prepared"),
     ("fs_main", "render_prepared"),
     ("fs_flat", "render_flat"),
     ("vs_solid", "render_solid"),
     ("fs_solid", "render_solid"),
+    // The bake passes together are Tile::generate; r_value is its `r` vector, band its `band`,
+    // wrap its `rem_euclid` indexing.
+    ("vs_bake", "generate"),
+    ("fs_bake_down_x", "generate"),
+    ("fs_bake_down_y", "generate"),
+    ("fs_bake_tile", "generate"),
+    ("r_value", "generate"),
+    ("band", "generate"),
+    ("wrap_mod", "shift_index"),
 ];
 
 fn wgsl_functions(src: &str) -> Vec<String> {
@@ -41,7 +54,10 @@ fn every_wgsl_function_has_a_rust_twin() {
             .find(|(w, _)| *w == file)
             .unwrap_or_else(|| panic!("{file} has functions but no twin file in TWIN_FILES"))
             .1;
-        let rust = std::fs::read_to_string(format!("{root}/{rust_file}")).unwrap();
+        let rust: String = rust_file
+            .iter()
+            .map(|f| std::fs::read_to_string(format!("{root}/{f}")).unwrap())
+            .collect();
         for f in functions {
             let twin = RENAMED
                 .iter()
@@ -50,7 +66,7 @@ fn every_wgsl_function_has_a_rust_twin() {
                 .unwrap_or(&f);
             assert!(
                 rust.contains(&format!("fn {twin}(")),
-                "WGSL `{f}` in {file} has no Rust twin `fn {twin}` in {rust_file}"
+                "WGSL `{f}` in {file} has no Rust twin `fn {twin}` in {rust_file:?}"
             );
             checked += 1;
         }
