@@ -10,6 +10,7 @@ pub mod analyze;
 pub mod colour;
 pub mod error;
 pub mod evaluate;
+pub mod export;
 pub mod histogram;
 pub mod input;
 pub mod morph;

@@ -38,6 +38,7 @@ fn help_everywhere() {
         vec!["evaluate", "--help"],
         vec!["fidelity", "--help"],
         vec!["morph", "--help"],
+        vec!["export", "--help"],
     ] {
         let o = proctex(&args);
         assert!(o.status.success(), "{args:?}");
@@ -193,4 +194,31 @@ fn morph_prints_valid_params_and_rejects_bad_t() {
     assert_eq!(proctex(&["morph", &a, "--t", "0.5"]).status.code(), Some(2));
     let o = proctex(&["morph", &a, &bad("text.png"), "--t", "0.5"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}
+
+#[test]
+fn export_prints_json_and_wgsl() {
+    let params = tmp("export.json");
+    let o = proctex(&["analyze", &sample("skimage_gravel_512.png"), "-o", &params]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = proctex(&["export", &params, "--format", "wgsl"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let wgsl = String::from_utf8_lossy(&o.stdout);
+    assert!(wgsl.contains("fn proctex(") && wgsl.contains("@fragment"));
+    let o = proctex(&["export", &params, "--format", "json"]);
+    assert!(o.status.success());
+    proctex::params::Params::from_json(&String::from_utf8_lossy(&o.stdout)).unwrap();
+    assert_eq!(
+        proctex(&["export", &params, "--format", "glsl"])
+            .status
+            .code(),
+        Some(2)
+    );
+    assert_eq!(proctex(&["export", &params]).status.code(), Some(2));
+    assert_eq!(
+        proctex(&["export", &bad("text.png"), "--format", "wgsl"])
+            .status
+            .code(),
+        Some(1)
+    );
 }

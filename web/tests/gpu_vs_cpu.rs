@@ -460,3 +460,177 @@ fn tile_baked_on_the_gpu_equals_the_cpu_tile() {
         assert!(max < 1e-3, "seed {seed}: max {max}");
     }
 }
+
+#[test]
+fn exported_wgsl_renders_the_cpu_image() {
+    let gpu = gpu();
+    let params = sample_params("skimage_gravel_512.png");
+    let src = proctex::export::wgsl(&params).unwrap();
+    let module = gpu
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("exported"),
+            source: wgpu::ShaderSource::Wgsl(src.into()),
+        });
+    let n = proctex::noise::TILE_2D as u32;
+    // The host steps of the snippet's header comment.
+    let a = bake_pass(&gpu, &module, "fs_bake_down_x", None, n / 2, n);
+    let b = bake_pass(&gpu, &module, "fs_bake_down_y", Some(&a), n, n / 2);
+    let tile = bake_pass(&gpu, &module, "fs_bake_tile", Some(&b), n, n);
+    let dummy = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("tile3 stand-in"),
+        size: wgpu::Extent3d {
+            width: 1,
+            height: 1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D3,
+        format: wgpu::TextureFormat::R32Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+    let (w, h) = (256u32, 192u32);
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("target"),
+        size: wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let pipeline = gpu
+        .device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("exported"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+    let tile_view = tile.create_view(&wgpu::TextureViewDescriptor::default());
+    let dummy_view = dummy.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D3),
+        ..Default::default()
+    });
+    let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(&tile_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&dummy_view),
+            },
+        ],
+    });
+    let row = (w * 4).div_ceil(256) * 256;
+    let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: (row * h) as u64,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
+    {
+        let view = target.create_view(&wgpu::TextureViewDescriptor::default());
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: None,
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture: &target,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &readback,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    gpu.queue.submit([encoder.finish()]);
+    let slice = readback.slice(..);
+    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .expect("poll");
+    let data = slice.get_mapped_range().expect("mapped");
+    let cpu = render(&params, w, h, &View::default()).to_rgb8();
+    let mut sum = 0.0f64;
+    let mut max = 0u8;
+    for y in 0..h {
+        for x in 0..w {
+            let g = &data[(y * row + x * 4) as usize..(y * row + x * 4 + 3) as usize];
+            let c = &cpu[((y * w + x) * 3) as usize..((y * w + x) * 3 + 3) as usize];
+            for k in 0..3 {
+                let d = g[k].abs_diff(c[k]);
+                sum += d as f64;
+                max = max.max(d);
+            }
+        }
+    }
+    let mae = sum / (w * h * 3) as f64;
+    println!(
+        "exported WGSL (tile baked on the GPU) vs CPU, gravel {w}×{h} on {}: mean {mae:.4}/255, max {max}/255",
+        gpu.adapter_name
+    );
+    assert!(mae <= 0.25 && max <= 3, "mean {mae}, max {max}");
+}

@@ -26,6 +26,7 @@ COMMANDS:
     evaluate  texture distances between two images
     fidelity  synthesis-vs-photo distance ratios (the README's fidelity table)
     morph     params JSON files → the texture a fraction t of the way through them
+    export    params JSON → params JSON or a complete WGSL shader of the texture
     help      this text; `proctex <COMMAND> --help` for a command
 
 Exit codes: 0 success, 1 bad input or failed operation, 2 bad usage.";
@@ -91,6 +92,13 @@ proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
 Interpolates the textures (Lagae §8): everything linearly except the colour basis (quaternion
 slerp) and the scale (geometric); t in [0, 1] is spread evenly over the segments A→B→C…; the
 noise uses A's seed. Prints the params JSON (or writes OUT.json).";
+
+const EXPORT_HELP: &str = "\
+proctex export PARAMS.json --format json|wgsl [-o OUT]
+
+json: the validated params document. wgsl: a complete WGSL shader (plane textures): the
+function proctex(p, pixel_size) with the params baked in, three passes that bake the noise
+tile from the seed, and a full-screen vs_main/fs_main; its header comment says how to host it.";
 
 /// Minimal argument cursor: positional arguments and `--flag [value]` options.
 struct Args {
@@ -210,6 +218,48 @@ fn read_params(path: &str) -> Result<Params> {
     let text = String::from_utf8(read(path)?)
         .map_err(|_| Error::params("(document)", format!("{path}: not UTF-8 text")))?;
     Params::from_json(&text)
+}
+
+fn cmd_export(mut a: Args) -> Result<()> {
+    let (mut file, mut format, mut out) = (None, None, None);
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{EXPORT_HELP}");
+                return Ok(());
+            }
+            "--format" => format = Some(a.value(&arg)?),
+            "-o" | "--output" => out = Some(a.value(&arg)?),
+            f if f.starts_with('-') => return Err(usage(format!("export: unknown option {f}"))),
+            _ if file.is_none() => file = Some(arg),
+            _ => return Err(usage(format!("export: unexpected argument `{arg}`"))),
+        }
+    }
+    let file = file.ok_or_else(|| usage("export: which params file? (proctex export PARAMS)"))?;
+    let format = format.ok_or_else(|| usage("export: --format json|wgsl is required"))?;
+    let params = read_params(&file)?;
+    let text = match format.as_str() {
+        "json" => params.to_json(),
+        "wgsl" => proctex::export::wgsl(&params)?,
+        "glsl" => {
+            return Err(usage(
+                "export: GLSL export is not implemented yet; use --format wgsl",
+            ));
+        }
+        f => {
+            return Err(usage(format!(
+                "export: unknown format `{f}` (json or wgsl)"
+            )));
+        }
+    };
+    match out {
+        Some(path) => std::fs::write(&path, &text).map_err(|e| Error::Io {
+            path,
+            message: e.to_string(),
+        })?,
+        None => println!("{text}"),
+    }
+    Ok(())
 }
 
 fn cmd_morph(mut a: Args) -> Result<()> {
@@ -520,6 +570,7 @@ fn main() -> ExitCode {
         "evaluate" => cmd_evaluate(args),
         "fidelity" => cmd_fidelity(args),
         "morph" => cmd_morph(args),
+        "export" => cmd_export(args),
         "help" | "-h" | "--help" => {
             println!("{MAIN_HELP}");
             Ok(())
