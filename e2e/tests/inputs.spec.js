@@ -97,6 +97,8 @@ test('dragging the crop rectangle re-analyses the chosen region', async ({ page 
 
 test('a 12-megapixel JPEG is analysed in the worker while frames keep coming', async ({ page }) => {
   await openApp(page);
+  // Let the worker finish the start-up gallery analyses first, so the job runs alone.
+  await page.waitForFunction(() => window.proctex.galleryReady, null, { timeout: 120_000 });
   const n = (await state(page)).analyses;
   const result = await page.evaluate(async () => {
     const img = await createImageBitmap(await (await fetch('samples/skimage_gravel_512.png')).blob());
