@@ -298,6 +298,8 @@ struct PresetsState {
     renaming: Option<(usize, String)>,
     /// The morph being shown (keys, t); `None`: the params are edited directly.
     morph: Option<Vec<Params>>,
+    /// The ticked presets `morph` was built from (`None`: loaded from a saved morph).
+    morph_from: Option<Vec<usize>>,
     t: f32,
     playing: bool,
     looping: bool,
@@ -829,6 +831,7 @@ impl ProctexApp {
                 match &p.morph {
                     Some(m) => {
                         self.presets.morph = Some(m.keys.clone());
+                        self.presets.morph_from = None;
                         self.presets.duration_s = m.duration_s;
                         self.presets.t = 0.0;
                         self.params = Some(m.keys[0].clone());
@@ -868,16 +871,17 @@ impl ProctexApp {
 
     /// The morph: t slider, play/loop, duration, save as a preset.
     fn morph_controls(&mut self, ui: &mut egui::Ui) {
-        let chosen: Vec<Params> = self
-            .presets
-            .list
-            .iter()
-            .zip(&self.presets.selected)
-            .filter(|(_, s)| **s)
-            .map(|(p, _)| p.params.clone())
+        // Indices, not params: no per-frame clones; keys are copied only when the ticks change.
+        let chosen: Vec<usize> = (0..self.presets.selected.len())
+            .filter(|&i| self.presets.selected[i])
             .collect();
-        if chosen.len() >= 2 && self.presets.morph.as_ref() != Some(&chosen) {
-            self.presets.morph = Some(chosen);
+        if chosen.len() >= 2 && self.presets.morph_from.as_ref() != Some(&chosen) {
+            let keys = chosen
+                .iter()
+                .map(|&i| self.presets.list[i].params.clone())
+                .collect();
+            self.presets.morph = Some(keys);
+            self.presets.morph_from = Some(chosen);
             self.presets.t = 0.0;
             self.apply_morph();
         }
@@ -930,6 +934,7 @@ impl ProctexApp {
             self.record("morph.stop", &r);
             if r.clicked() {
                 self.presets.morph = None;
+                self.presets.morph_from = None;
                 self.presets.playing = false;
                 self.presets.selected.iter_mut().for_each(|s| *s = false);
             }

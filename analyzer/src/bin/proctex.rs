@@ -241,11 +241,6 @@ fn cmd_export(mut a: Args) -> Result<()> {
     let text = match format.as_str() {
         "json" => params.to_json(),
         "wgsl" => proctex::export::wgsl(&params)?,
-        "glsl" => {
-            return Err(usage(
-                "export: GLSL export is not implemented yet; use --format wgsl",
-            ));
-        }
         f => {
             return Err(usage(format!(
                 "export: unknown format `{f}` (json or wgsl)"
