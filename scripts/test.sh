@@ -5,7 +5,7 @@
 # Chromium, then the speed benchmarks, analyzer and browser app (they print ratios measured in
 # one run and assert nothing about time).
 # Installs what it needs: a Rust toolchain with rustfmt and clippy, Mesa's software Vulkan
-# driver (lavapipe), Debian's chromium, and (through scripts/build-web.sh) the wasm target,
+# driver (lavapipe), Debian's chromium and glslang-tools (compiles the exported GLSL), and (through scripts/build-web.sh) the wasm target,
 # wasm-bindgen-cli and the npm packages.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,6 +24,7 @@ step "system packages"
 need=()
 ls /usr/share/vulkan/icd.d/lvp_icd.*.json >/dev/null 2>&1 || need+=(mesa-vulkan-drivers)
 [ -x /usr/bin/chromium ] || need+=(chromium)
+command -v glslangValidator >/dev/null 2>&1 || need+=(glslang-tools)
 if [ ${#need[@]} -gt 0 ]; then
     echo "installing ${need[*]}"
     apt_install "${need[@]}"

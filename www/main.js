@@ -187,7 +187,8 @@ presetInput.addEventListener('change', async () => {
 });
 
 function downloadText(name, text) {
-  const url = URL.createObjectURL(new Blob([text], { type: 'application/json' }));
+  const type = name.endsWith('.json') ? 'application/json' : 'text/plain';
+  const url = URL.createObjectURL(new Blob([text], { type }));
   const a = document.createElement('a');
   a.href = url; a.download = name;
   document.body.appendChild(a); a.click(); a.remove();
@@ -281,6 +282,10 @@ window.proctexHost = {
   analyseCrop: (x, y, w, h, seed) => { cropNext = { crop: [x, y, w, h], seed }; pumpCrop(); },
   modelStats: (params) => { statsNext = params; pumpStats(); },
   downloadText,
+  copyText: (text) => {
+    window.proctex.lastCopied = text;
+    if (navigator.clipboard) navigator.clipboard.writeText(text).catch(() => {});
+  },
   openPresets: () => presetInput.click(),
   copyShareLink: (json) => {
     const link = shareLink(json);

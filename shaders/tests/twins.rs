@@ -73,3 +73,55 @@ fn every_wgsl_function_has_a_rust_twin() {
     }
     assert!(checked >= 12, "only {checked} functions checked");
 }
+
+/// GLSL function → WGSL twin, where the names differ (GLSL reserves the WGSL name, or the
+/// GLSL `main` of the bake passes is the three WGSL entry points).
+const GLSL_RENAMED: [(&str, &str); 4] = [
+    ("uniform01", "uniform"),
+    ("wavelet_noise2", "noise2"),
+    ("wavelet_noise3", "noise3"),
+    ("main", "fs_bake_tile"),
+];
+
+fn glsl_functions(src: &str) -> Vec<String> {
+    src.lines()
+        .filter(|l| !l.starts_with(' ') && !l.starts_with("//") && !l.starts_with('#'))
+        .filter_map(|l| {
+            let (head, _) = l.split_once('(')?;
+            let mut words = head.split_whitespace();
+            let (_ty, name) = (words.next()?, words.next()?);
+            (words.next().is_none() && l.trim_end().ends_with('{')).then(|| name.to_string())
+        })
+        .collect()
+}
+
+#[test]
+fn every_glsl_function_has_a_wgsl_twin() {
+    let mut checked = 0;
+    for (file, glsl, wgsl) in proctex_shaders::glsl::FILES {
+        let wgsl_fns = wgsl_functions(wgsl);
+        for f in glsl_functions(glsl) {
+            let twin = GLSL_RENAMED
+                .iter()
+                .find(|(g, _)| *g == f)
+                .map(|(_, w)| *w)
+                .unwrap_or(&f);
+            assert!(
+                wgsl_fns.iter().any(|w| w == twin),
+                "GLSL `{f}` in glsl/{file} has no WGSL twin `fn {twin}`"
+            );
+            checked += 1;
+        }
+        // And the other way: every WGSL function of the library has a GLSL twin (entry points
+        // and the 3D noise's variants aside).
+        let glsl_fns = glsl_functions(glsl);
+        for w in wgsl_fns {
+            let skip = w.starts_with("vs_") || w.starts_with("fs_");
+            let has = glsl_fns
+                .iter()
+                .any(|g| *g == w || GLSL_RENAMED.iter().any(|(gn, wn)| gn == g && *wn == w));
+            assert!(skip || has, "WGSL `{w}` has no GLSL twin in glsl/{file}");
+        }
+    }
+    assert!(checked >= 15, "only {checked} GLSL functions checked");
+}

@@ -704,6 +704,48 @@ impl ProctexApp {
             }
         });
         ui.horizontal(|ui| {
+            ui.label("Shader:");
+            for (format, ext) in [("WGSL", "wgsl"), ("GLSL", "glsl")] {
+                let enabled = self.params.is_some();
+                let r = ui
+                    .add_enabled(enabled, egui::Button::new(format!("Copy {format}")).small())
+                    .on_hover_text(format!(
+                        "Copy a complete {format} shader of this texture (params baked in, \
+                         tile bake passes, host notes in its header) to the clipboard"
+                    ));
+                self.record(format!("export.copy_{ext}"), &r);
+                let copy = r.clicked();
+                let r = ui
+                    .add_enabled(enabled, egui::Button::new(format!("{format}…")).small())
+                    .on_hover_text(format!("Download the {format} shader"));
+                self.record(format!("export.download_{ext}"), &r);
+                let download = r.clicked();
+                if (copy || download)
+                    && let Some(p) = &self.params
+                {
+                    match export_shader(p, ext) {
+                        Ok(text) if copy => {
+                            host("copyText", &[JsValue::from_str(&text)]);
+                            self.status_note = Some(format!(
+                                "{format} shader copied to the clipboard ({} lines)",
+                                text.lines().count()
+                            ));
+                        }
+                        Ok(text) => {
+                            host(
+                                "downloadText",
+                                &[
+                                    JsValue::from_str(&format!("proctex-texture.{ext}")),
+                                    JsValue::from_str(&text),
+                                ],
+                            );
+                        }
+                        Err(e) => self.error = Some(format!("{format} export: {e}")),
+                    }
+                }
+            }
+        });
+        ui.horizontal(|ui| {
             let r = ui.small_button("Export…");
             self.record("presets.export", &r);
             if r.clicked() {
@@ -1771,4 +1813,15 @@ fn short(v: f32) -> String {
 
 fn now_ms() -> f64 {
     js_sys::Date::now()
+}
+
+/// The complete shader of `params` in `format` ("wgsl" or "glsl"), as `proctex export` writes
+/// it.
+pub fn export_shader(params: &Params, format: &str) -> Result<String, String> {
+    match format {
+        "wgsl" => proctex::export::wgsl(params),
+        "glsl" => proctex::export::glsl(params),
+        f => return Err(format!("unknown shader language `{f}` (wgsl or glsl)")),
+    }
+    .map_err(|e| e.to_string())
 }

@@ -26,7 +26,7 @@ COMMANDS:
     evaluate  texture distances between two images
     fidelity  synthesis-vs-photo distance ratios (the README's fidelity table)
     morph     params JSON files → the texture a fraction t of the way through them
-    export    params JSON → params JSON or a complete WGSL shader of the texture
+    export    params JSON → params JSON or a complete WGSL or GLSL shader of the texture
     help      this text; `proctex <COMMAND> --help` for a command
 
 Exit codes: 0 success, 1 bad input or failed operation, 2 bad usage.";
@@ -94,11 +94,13 @@ slerp) and the scale (geometric); t in [0, 1] is spread evenly over the segments
 noise uses A's seed. Prints the params JSON (or writes OUT.json).";
 
 const EXPORT_HELP: &str = "\
-proctex export PARAMS.json --format json|wgsl [-o OUT]
+proctex export PARAMS.json --format json|wgsl|glsl [-o OUT]
 
 json: the validated params document. wgsl: a complete WGSL shader (plane textures): the
 function proctex(p, pixel_size) with the params baked in, three passes that bake the noise
-tile from the seed, and a full-screen vs_main/fs_main; its header comment says how to host it.";
+tile from the seed, and a full-screen vs_main/fs_main; its header comment says how to host it.
+glsl: the same as GLSL ES 3.00 (WebGL2; desktop GLSL 330 by changing the #version line): the
+display fragment shader as-is, and the vertex shader and bake passes by one #define each.";
 
 /// Minimal argument cursor: positional arguments and `--flag [value]` options.
 struct Args {
@@ -236,14 +238,15 @@ fn cmd_export(mut a: Args) -> Result<()> {
         }
     }
     let file = file.ok_or_else(|| usage("export: which params file? (proctex export PARAMS)"))?;
-    let format = format.ok_or_else(|| usage("export: --format json|wgsl is required"))?;
+    let format = format.ok_or_else(|| usage("export: --format json|wgsl|glsl is required"))?;
     let params = read_params(&file)?;
     let text = match format.as_str() {
         "json" => params.to_json(),
         "wgsl" => proctex::export::wgsl(&params)?,
+        "glsl" => proctex::export::glsl(&params)?,
         f => {
             return Err(usage(format!(
-                "export: unknown format `{f}` (json or wgsl)"
+                "export: unknown format `{f}` (json, wgsl or glsl)"
             )));
         }
     };

@@ -1,0 +1,69 @@
+// Exported shaders work outside the app: copied from the running app with its own buttons,
+// rendered by the bare host pages (www/host-wgsl.html: raw WebGPU; www/host-glsl.html: raw
+// WebGL2), and compared with the app's own view of the same world rectangle.
+const { test } = require('@playwright/test');
+const { expect, openApp, state, waitFrames, grab, clickWidget } = require('./helpers');
+
+// The app's 2D view of world [0, size)² at one world unit per pixel, and the shader the app
+// copies with its "Copy <lang>" button.
+async function appViewAndSnippet(page, lang, size) {
+  await openApp(page);
+  await page.evaluate(() => window.proctex.setView(0, 0, 1));
+  await waitFrames(page, 3);
+  const s = await state(page);
+  const [vx, vy] = s.widgets.texture;
+  // The view's top-left corner is world (0, 0) at frame pixel (round(vx), round(vy)); grab a
+  // whole-pixel square inside it and remember which world point its corner is.
+  const frameX = Math.round(vx), frameY = Math.round(vy);
+  const px = Math.ceil(vx) + 8, py = Math.ceil(vy) + 8;
+  const app = await grab(page, [px, py, size, size]);
+  await clickWidget(page, `export.copy_${lang}`);
+  const src = await page.evaluate(() => window.proctex.lastCopied);
+  expect(src, 'the Copy button put a shader on the clipboard').toBeTruthy();
+  expect((await state(page)).error).toBeFalsy();
+  return { app, src, offset: [px - frameX, py - frameY] };
+}
+
+async function hostImage(page, hostPage, src, size, offset) {
+  await page.goto(hostPage);
+  const w = size + offset[0], h = size + offset[1];
+  const error = await page.evaluate(([s, w2, h2]) => window.host.render(s, w2, h2), [src, w, h]);
+  expect(error, `${hostPage} reports no error`).toBeNull();
+  return grab(page, [offset[0], offset[1], size, size]);
+}
+
+function compare(a, b) {
+  let sum = 0, max = 0;
+  const n = a.width * a.height;
+  for (let i = 0; i < n; i++) {
+    for (let c = 0; c < 3; c++) {
+      const d = Math.abs(a.data[i * 4 + c] - b.data[i * 4 + c]);
+      sum += d; max = Math.max(max, d);
+    }
+  }
+  return { mae: sum / (n * 3), max };
+}
+
+for (const [lang, hostPage] of [['wgsl', 'host-wgsl.html'], ['glsl', 'host-glsl.html']]) {
+  test(`the exported ${lang.toUpperCase()} renders the app's view in the bare host page`, async ({ page }) => {
+    const size = 192;
+    const { app, src, offset } = await appViewAndSnippet(page, lang, size);
+    const host = await hostImage(page, hostPage, src, size, offset);
+    const { mae, max } = compare(app, host);
+    console.log(`${lang} host vs app over ${size}×${size}: mean |diff| = ${mae.toFixed(4)}/255, max ${max}/255`);
+    // Not a blank or flat image: the texture itself.
+    let lo = 255, hi = 0;
+    for (let i = 0; i < size * size * 4; i += 4) { lo = Math.min(lo, host.data[i]); hi = Math.max(hi, host.data[i]); }
+    expect(hi - lo).toBeGreaterThan(40);
+    expect(mae).toBeLessThan(1.0);
+  });
+}
+
+test('a shader host page shows a clear message for a broken snippet', async ({ page }) => {
+  for (const hostPage of ['host-wgsl.html', 'host-glsl.html']) {
+    await page.goto(hostPage);
+    const error = await page.evaluate(() => window.host.render('#version 300 es\nthis is not a shader', 64, 64));
+    expect(error).toBeTruthy();
+    await expect(page.locator('#error')).toContainText(error.split('\n')[0].slice(0, 20));
+  }
+});

@@ -1,0 +1,83 @@
+// Wavelet noise evaluation and band clamping (GLSL twin of shaders/noise.wgsl, where
+// wavelet_noise2/3 are noise2/3: desktop GLSL reserves those names; Rust twins in
+// analyzer/src/noise.rs). Same operation order, 32-bit floats (highp). Indices wrap with a
+// mask: tile sides are powers of two, and GLSL's % is undefined for negative operands.
+
+struct BWeights {
+    int mid;
+    vec3 w;
+};
+
+BWeights bspline_weights(float p) {
+    float mid = ceil(p - 0.5);
+    float t = mid - (p - 0.5);
+    float w0 = 0.5 * t * t;
+    float w2 = 0.5 * (1.0 - t) * (1.0 - t);
+    return BWeights(int(mid), vec3(w0, 1.0 - w0 - w2, w2));
+}
+
+float wrap_coord(float p, float n) {
+    return p - n * floor(p / n);
+}
+
+int wrap_index(int i, int n) {
+    return i & (n - 1);
+}
+
+#ifdef PROCTEX_SOLID
+uniform highp sampler3D proctex_tile3;
+
+float wavelet_noise3(vec3 p) {
+    int ni = textureSize(proctex_tile3, 0).x;
+    float nf = float(ni);
+    BWeights bx = bspline_weights(wrap_coord(p.x, nf));
+    BWeights by = bspline_weights(wrap_coord(p.y, nf));
+    BWeights bz = bspline_weights(wrap_coord(p.z, nf));
+    ivec3 cols = ivec3(
+        wrap_index(bx.mid - 1, ni),
+        wrap_index(bx.mid, ni),
+        wrap_index(bx.mid + 1, ni));
+    float sum = 0.0;
+    for (int dz = 0; dz < 3; dz++) {
+        int slab = wrap_index(bz.mid + dz - 1, ni);
+        float plane = 0.0;
+        for (int dy = 0; dy < 3; dy++) {
+            int row = wrap_index(by.mid + dy - 1, ni);
+            float line = 0.0;
+            for (int dx = 0; dx < 3; dx++) {
+                line += bx.w[dx] * texelFetch(proctex_tile3, ivec3(cols[dx], row, slab), 0).r;
+            }
+            plane += by.w[dy] * line;
+        }
+        sum += bz.w[dz] * plane;
+    }
+    return sum;
+}
+#else
+uniform highp sampler2D proctex_tile2;
+
+float wavelet_noise2(vec2 p) {
+    int ni = textureSize(proctex_tile2, 0).x;
+    float nf = float(ni);
+    BWeights bx = bspline_weights(wrap_coord(p.x, nf));
+    BWeights by = bspline_weights(wrap_coord(p.y, nf));
+    ivec3 cols = ivec3(
+        wrap_index(bx.mid - 1, ni),
+        wrap_index(bx.mid, ni),
+        wrap_index(bx.mid + 1, ni));
+    float sum = 0.0;
+    for (int dy = 0; dy < 3; dy++) {
+        int row = wrap_index(by.mid + dy - 1, ni);
+        float line = 0.0;
+        for (int dx = 0; dx < 3; dx++) {
+            line += bx.w[dx] * texelFetch(proctex_tile2, ivec2(cols[dx], row), 0).r;
+        }
+        sum += by.w[dy] * line;
+    }
+    return sum;
+}
+#endif
+
+float band_fade(uint band, float log2_footprint) {
+    return clamp(1.0 - (log2_footprint - float(band)), 0.0, 1.0);
+}

@@ -1,0 +1,17 @@
+// The texture parameters (GLSL twin of shaders/params.wgsl; same fields, same order). The
+// export defines `params` as a constant of this struct; every array element is a vec4.
+
+#define MAX_BANDS 12
+#define MAX_KNOTS 33
+
+struct Params {
+    vec4 mean;              // mean RGB, contrast
+    vec4 basis[3];          // rows: principal axes
+    vec4 transform;         // 1/scale, cos(rotation), sin(rotation), unused
+    uvec4 counts;           // bands, knots, solid (0/1), histogram (0/1)
+    vec4 sigma;             // sigma_M per channel
+    vec4 weights[12];       // [band] -> weight of channels 0, 1, 2
+    vec4 offsets[36];       // [channel*12 + band] -> offset (x, y, z) in coefficient units
+    vec4 knots[33];         // [knot] -> knot value of channels 0, 1, 2
+    vec4 tangents[33];      // [knot] -> Fritsch-Carlson tangent of channels 0, 1, 2
+};

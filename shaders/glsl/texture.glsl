@@ -1,0 +1,51 @@
+// The procedural texture at a point (GLSL twin of shaders/texture.wgsl; Rust twins in
+// analyzer/src/render.rs: Prepared::texel, channel_noise, shade).
+
+vec3 texel(vec3 world) {
+    float c = params.transform.y;
+    float s = params.transform.z;
+    float inv_scale = params.transform.x;
+    return vec3(
+        (c * world.x + s * world.y) * inv_scale,
+        (-s * world.x + c * world.y) * inv_scale,
+        world.z * inv_scale);
+}
+
+float channel_noise(int c, vec3 u, float log2_fp) {
+    float sum = 0.0;
+    for (uint j = 0u; j < params.counts.x; j++) {
+        float w = params.weights[j][c] * band_fade(j, log2_fp);
+        if (w == 0.0) {
+            continue;
+        }
+        float f = 1.0 / float(1u << j);
+        vec3 o = params.offsets[uint(c) * uint(MAX_BANDS) + j].xyz;
+#ifdef PROCTEX_SOLID
+        float v = wavelet_noise3(vec3(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z));
+#else
+        float v = wavelet_noise2(vec2(u.x * f + o.x, u.y * f + o.y));
+#endif
+        sum += w * v;
+    }
+    return sum;
+}
+
+vec3 shade(vec3 world, float log2_fp) {
+    vec3 u = texel(world);
+    vec3 rgb = params.mean.xyz;
+    uint k = params.counts.y;
+    for (int c = 0; c < 3; c++) {
+        float g = channel_noise(c, u, log2_fp);
+        float v;
+        if (params.counts.w != 0u && params.sigma[c] > 0.0) {
+            v = spline_eval(c, knot_coordinate(g, params.sigma[c]));
+        } else if (params.counts.w != 0u) {
+            v = params.knots[k / 2u][c];
+        } else {
+            v = g;
+        }
+        float cv = params.mean.w * v;
+        rgb += cv * params.basis[c].xyz;
+    }
+    return rgb;
+}
