@@ -1,5 +1,5 @@
 // The procedural texture at a point. Twins: analyzer/src/render.rs (Prepared::texel,
-// channel_noise, shade).
+// channel_noise, colour, shade).
 
 fn texel(world: vec3<f32>) -> vec3<f32> {
     let c = params.transform.y;
@@ -32,22 +32,30 @@ fn channel_noise(c: u32, u: vec3<f32>, log2_fp: f32) -> f32 {
     return sum;
 }
 
-fn shade(world: vec3<f32>, log2_fp: f32) -> vec3<f32> {
-    let u = texel(world);
+// The colour of the three channels' noise values g: histogram matching, contrast, back to RGB.
+fn colour(g: vec3<f32>) -> vec3<f32> {
     var rgb = params.mean.xyz;
     let k = params.counts.y;
     for (var c = 0u; c < 3u; c++) {
-        let g = channel_noise(c, u, log2_fp);
         var v: f32;
         if (params.counts.w != 0u && params.sigma[c] > 0.0) {
-            v = spline_eval(c, knot_coordinate(g, params.sigma[c]));
+            v = spline_eval(c, knot_coordinate(g[c], params.sigma[c]));
         } else if (params.counts.w != 0u) {
             v = params.knots[k / 2u][c];
         } else {
-            v = g;
+            v = g[c];
         }
         let cv = params.mean.w * v;
         rgb += cv * params.basis[c].xyz;
     }
     return rgb;
+}
+
+fn shade(world: vec3<f32>, log2_fp: f32) -> vec3<f32> {
+    let u = texel(world);
+    return colour(vec3<f32>(
+        channel_noise(0u, u, log2_fp),
+        channel_noise(1u, u, log2_fp),
+        channel_noise(2u, u, log2_fp),
+    ));
 }

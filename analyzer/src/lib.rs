@@ -18,6 +18,7 @@ pub mod noise;
 pub mod params;
 pub mod render;
 pub mod rng;
+pub mod seamless;
 pub mod solid;
 pub mod spectrum;
 

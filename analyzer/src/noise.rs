@@ -233,7 +233,7 @@ pub fn bspline_weights(p: f32) -> (i32, [f32; 3]) {
 }
 
 #[inline]
-fn wrap_coord(p: f32, n: f32) -> f32 {
+pub(crate) fn wrap_coord(p: f32, n: f32) -> f32 {
     p - n * (p / n).floor()
 }
 

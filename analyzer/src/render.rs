@@ -220,25 +220,24 @@ pub fn channel_noise(prep: &Prepared, tile: &Tile, c: usize, u: [f32; 3], log2_f
     sum
 }
 
-/// The colour at world point `world` for a pixel footprint of `2^log2_fp` texels.
+/// The colour of the three channels' noise values `g`: histogram matching (inverse CDF spline),
+/// contrast, back to RGB about the mean.
 #[inline]
-pub fn shade(prep: &Prepared, tile: &Tile, world: [f32; 3], log2_fp: f32) -> [f32; 3] {
-    let u = prep.texel(world);
+pub fn colour(prep: &Prepared, g: [f32; 3]) -> [f32; 3] {
     let mut rgb = prep.mean;
     let k = prep.knots as usize;
     for c in 0..3 {
-        let g = channel_noise(prep, tile, c, u, log2_fp);
         let v = if prep.histogram && prep.sigma[c] > 0.0 {
             spline_eval(
                 &prep.knot_values[c][..k],
                 &prep.tangents[c][..k],
-                knot_coordinate(g, prep.sigma[c]),
+                knot_coordinate(g[c], prep.sigma[c]),
             )
         } else if prep.histogram {
             // A channel without variation: its (flat) distribution's median.
             prep.knot_values[c][k / 2]
         } else {
-            g
+            g[c]
         };
         let cv = prep.contrast * v;
         for i in 0..3 {
@@ -246,6 +245,16 @@ pub fn shade(prep: &Prepared, tile: &Tile, world: [f32; 3], log2_fp: f32) -> [f3
         }
     }
     rgb
+}
+
+/// The colour at world point `world` for a pixel footprint of `2^log2_fp` texels.
+#[inline]
+pub fn shade(prep: &Prepared, tile: &Tile, world: [f32; 3], log2_fp: f32) -> [f32; 3] {
+    let u = prep.texel(world);
+    colour(
+        prep,
+        [0, 1, 2].map(|c| channel_noise(prep, tile, c, u, log2_fp)),
+    )
 }
 
 /// Which part of world space an image shows.

@@ -1,5 +1,5 @@
 // The procedural texture at a point (GLSL twin of shaders/texture.wgsl; Rust twins in
-// analyzer/src/render.rs: Prepared::texel, channel_noise, shade).
+// analyzer/src/render.rs: Prepared::texel, channel_noise, colour, shade).
 
 vec3 texel(vec3 world) {
     float c = params.transform.y;
@@ -30,22 +30,29 @@ float channel_noise(int c, vec3 u, float log2_fp) {
     return sum;
 }
 
-vec3 shade(vec3 world, float log2_fp) {
-    vec3 u = texel(world);
+// The colour of the three channels' noise values g: histogram matching, contrast, back to RGB.
+vec3 colour(vec3 g) {
     vec3 rgb = params.mean.xyz;
     uint k = params.counts.y;
     for (int c = 0; c < 3; c++) {
-        float g = channel_noise(c, u, log2_fp);
         float v;
         if (params.counts.w != 0u && params.sigma[c] > 0.0) {
-            v = spline_eval(c, knot_coordinate(g, params.sigma[c]));
+            v = spline_eval(c, knot_coordinate(g[c], params.sigma[c]));
         } else if (params.counts.w != 0u) {
             v = params.knots[k / 2u][c];
         } else {
-            v = g;
+            v = g[c];
         }
         float cv = params.mean.w * v;
         rgb += cv * params.basis[c].xyz;
     }
     return rgb;
+}
+
+vec3 shade(vec3 world, float log2_fp) {
+    vec3 u = texel(world);
+    return colour(vec3(
+        channel_noise(0, u, log2_fp),
+        channel_noise(1, u, log2_fp),
+        channel_noise(2, u, log2_fp)));
 }

@@ -29,6 +29,14 @@ pub fn plane_shader() -> String {
     [texture_library().as_str(), PLANE].join("\n")
 }
 
+/// Seamless tiles (the PNG tile export): every band periodic over the tile, rendered in strips.
+pub const SEAMLESS: &str = include_str!("../seamless.wgsl");
+
+/// The seamless tile shader (entry points `vs_seamless`, `fs_seamless`).
+pub fn seamless_shader() -> String {
+    [texture_library().as_str(), SEAMLESS].join("\n")
+}
+
 /// Baking the noise tile from the seed on the GPU (exported snippets).
 pub const BAKE: &str = include_str!("../bake.wgsl");
 
@@ -103,7 +111,7 @@ fn odd_offset(n: u32) -> u32 {
 }
 
 /// Every WGSL file: (name, source).
-pub const FILES: [(&str, &str); 7] = [
+pub const FILES: [(&str, &str); 8] = [
     ("params.wgsl", PARAMS),
     ("noise.wgsl", NOISE),
     ("histogram.wgsl", HISTOGRAM),
@@ -111,6 +119,7 @@ pub const FILES: [(&str, &str); 7] = [
     ("plane.wgsl", PLANE),
     ("solid.wgsl", SOLID),
     ("bake.wgsl", BAKE),
+    ("seamless.wgsl", SEAMLESS),
 ];
 
 /// Every complete shader: (name, source).
@@ -118,6 +127,7 @@ pub fn shaders() -> Vec<(&'static str, String)> {
     vec![
         ("plane", plane_shader()),
         ("solid", solid_shader()),
+        ("seamless", seamless_shader()),
         (
             "bake",
             bake_shader(&bake_constants(128, 1, 0x7431_3244, 0.01, 1.9)),

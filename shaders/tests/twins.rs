@@ -2,12 +2,13 @@
 
 /// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
 /// the same name, except for the ones listed in `RENAMED`.
-const TWIN_FILES: [(&str, &[&str]); 6] = [
+const TWIN_FILES: [(&str, &[&str]); 7] = [
     ("noise.wgsl", &["analyzer/src/noise.rs"]),
     ("histogram.wgsl", &["analyzer/src/histogram.rs"]),
     ("texture.wgsl", &["analyzer/src/render.rs"]),
     ("plane.wgsl", &["analyzer/src/render.rs"]),
     ("solid.wgsl", &["analyzer/src/solid.rs"]),
+    ("seamless.wgsl", &["analyzer/src/seamless.rs"]),
     (
         "bake.wgsl",
         &["analyzer/src/rng.rs", "analyzer/src/noise.rs"],
@@ -16,11 +17,13 @@ const TWIN_FILES: [(&str, &[&str]); 6] = [
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 12] = [
+const RENAMED: [(&str, &str); 14] = [
     ("vs_main", "render_prepared"),
     ("fs_main", "render_prepared"),
     ("fs_flat", "render_flat"),
     ("vs_solid", "render_solid"),
+    ("vs_seamless", "render_rows"),
+    ("fs_seamless", "render_rows"),
     ("fs_solid", "render_solid"),
     // The bake passes together are Tile::generate; r_value is its `r` vector, band its `band`,
     // wrap its `rem_euclid` indexing.

@@ -54,6 +54,22 @@ fn every_wgsl_file_is_used_by_a_shader() {
 }
 
 #[test]
+fn seamless_uniform_matches_rust() {
+    let module = parse("seamless", &proctex_shaders::seamless_shader());
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).unwrap();
+    let (handle, _) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("Seamless"))
+        .expect("struct Seamless");
+    assert_eq!(
+        layouter[handle].size as usize,
+        proctex::seamless::UNIFORM_SIZE
+    );
+}
+
+#[test]
 fn uniform_layout_matches_rust() {
     let src = proctex_shaders::plane_shader();
     let module = parse("plane", &src);

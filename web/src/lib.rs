@@ -5,6 +5,7 @@
 pub mod jobs;
 pub mod presets;
 pub mod renderer;
+pub mod tile_export;
 
 #[cfg(target_arch = "wasm32")]
 mod app;
