@@ -274,6 +274,86 @@ async function capture() {
 document.getElementById('camera_capture').addEventListener('click', () => capture());
 document.getElementById('camera_cancel').addEventListener('click', closeCamera);
 
+// PNG tile export: the app renders the seamless tile in strips and hands over PNG scanlines
+// (filter byte + RGB samples); the browser's own zlib (CompressionStream 'deflate') compresses
+// them as they come, and the chunks are wrapped into a PNG file at the end. Why here and not
+// in wasm: native-speed deflate, no encoder in the wasm, and only compressed bytes are kept.
+const CRC_TABLE = (() => {
+  const t = new Uint32Array(256);
+  for (let n = 0; n < 256; n++) {
+    let c = n;
+    for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+    t[n] = c >>> 0;
+  }
+  return t;
+})();
+
+function pngChunk(type, data) {
+  const out = new Uint8Array(12 + data.length);
+  const view = new DataView(out.buffer);
+  view.setUint32(0, data.length);
+  for (let i = 0; i < 4; i++) out[4 + i] = type.charCodeAt(i);
+  out.set(data, 8);
+  let c = 0xffffffff;
+  for (let i = 4; i < 8 + data.length; i++) c = CRC_TABLE[(c ^ out[i]) & 0xff] ^ (c >>> 8);
+  view.setUint32(8 + data.length, (c ^ 0xffffffff) >>> 0);
+  return out;
+}
+
+let tileWriter = null;
+
+function tileBegin(width, height, bits) {
+  if (tileWriter) tileWriter.writer.abort().catch(() => {});
+  const cs = new CompressionStream('deflate');
+  const writer = cs.writable.getWriter();
+  const chunks = [];
+  const reader = cs.readable.getReader();
+  const reading = (async () => {
+    for (;;) {
+      const { value, done } = await reader.read();
+      if (done) return;
+      chunks.push(value);
+    }
+  })();
+  tileWriter = { width, height, bits, writer, chunks, reading };
+}
+
+function tileRows(bytes) {
+  if (tileWriter) tileWriter.writer.write(bytes).catch(() => {});
+}
+
+async function tileEnd(name) {
+  const t = tileWriter;
+  tileWriter = null;
+  if (!t) return;
+  await t.writer.close();
+  await t.reading;
+  const ihdr = new Uint8Array(13);
+  const v = new DataView(ihdr.buffer);
+  v.setUint32(0, t.width);
+  v.setUint32(4, t.height);
+  ihdr[8] = t.bits; ihdr[9] = 2; // RGB
+  // One IDAT per compressed chunk, each at most 1 MiB.
+  const idats = [];
+  for (const c of t.chunks) {
+    for (let o = 0; o < c.length; o += 1 << 20) idats.push(pngChunk('IDAT', c.subarray(o, o + (1 << 20))));
+  }
+  const signature = new Uint8Array([137, 80, 78, 71, 13, 10, 26, 10]);
+  const blob = new Blob([signature, pngChunk('IHDR', ihdr), ...idats, pngChunk('IEND', new Uint8Array(0))],
+    { type: 'image/png' });
+  window.proctex.lastTile = { name, bytes: blob.size, width: t.width, height: t.height, bits: t.bits };
+  const url = URL.createObjectURL(blob);
+  const a = document.createElement('a');
+  a.href = url; a.download = name;
+  document.body.appendChild(a); a.click(); a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 60_000);
+}
+
+function tileAbort() {
+  if (tileWriter) tileWriter.writer.abort().catch(() => {});
+  tileWriter = null;
+}
+
 // What the app calls (window.proctexHost): see web/src/app.rs `host`.
 window.proctexHost = {
   openFile: () => fileInput.click(),
@@ -282,6 +362,10 @@ window.proctexHost = {
   analyseCrop: (x, y, w, h, seed) => { cropNext = { crop: [x, y, w, h], seed }; pumpCrop(); },
   modelStats: (params) => { statsNext = params; pumpStats(); },
   downloadText,
+  tileBegin,
+  tileRows,
+  tileEnd: (name) => { tileEnd(name).catch((e) => wasm.reportError(`PNG tile: ${e}`)); },
+  tileAbort,
   copyText: (text) => {
     window.proctex.lastCopied = text;
     if (navigator.clipboard) navigator.clipboard.writeText(text).catch(() => {});
@@ -306,6 +390,7 @@ window.proctex = {
   setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
   setViewMode: (mode) => wasm.setViewMode(mode),
   setFlatShader: (on) => wasm.setFlatShader(on),
+  setTileOptions: (size, bits, forceCpu) => wasm.setTileOptions(size, bits, !!forceCpu),
   state: () => JSON.parse(wasm.state()),
   requestRepaint: () => wasm.requestRepaint(),
   importPresets: (text) => wasm.importPresets(text),

@@ -67,3 +67,60 @@ test('a shader host page shows a clear message for a broken snippet', async ({ p
     await expect(page.locator('#error')).toContainText(error.split('\n')[0].slice(0, 20));
   }
 });
+
+// Mean |a − b| over RGB of two decoded PNGs of the same size (RGBA data, any bit depth).
+function meanDiff(a, b) {
+  let sum = 0;
+  const n = a.width * a.height;
+  for (let i = 0; i < n; i++) for (let c = 0; c < 3; c++) sum += Math.abs(a.data[i * 4 + c] - b.data[i * 4 + c]);
+  return sum / (n * 3);
+}
+
+// The wrap difference over the same-phase interior neighbour difference, columns then rows
+// (as `proctex::seamless::seam_stats`: phase 32).
+function seamRatios(img) {
+  const { width: w, height: h, data } = img;
+  const px = (x, y, c) => data[(y * w + x) * 4 + c];
+  const col = (x0, x1) => { let s = 0; for (let y = 0; y < h; y++) for (let c = 0; c < 3; c++) s += Math.abs(px(x0, y, c) - px(x1, y, c)); return s; };
+  const row = (y0, y1) => { let s = 0; for (let x = 0; x < w; x++) for (let c = 0; c < 3; c++) s += Math.abs(px(x, y0, c) - px(x, y1, c)); return s; };
+  const ratio = (len, pair) => {
+    let s = 0, n = 0;
+    for (let x = 0; x < len - 1; x++) if (x % 32 === (len - 1) % 32) { s += pair(x, x + 1); n++; }
+    return pair(len - 1, 0) / (s / n);
+  };
+  return [ratio(w, col), ratio(h, row)];
+}
+
+for (const [bits, forceCpu] of [[16, false], [8, true]]) {
+  test(`PNG tile export: ${bits}-bit on the ${forceCpu ? 'CPU (fallback)' : 'GPU'} equals the CLI tile and wraps seamlessly`, async ({ page }) => {
+    const { PNG } = require('pngjs');
+    const fs = require('fs');
+    const { execFileSync } = require('child_process');
+    const path = require('path');
+    const os = require('os');
+    const { ROOT } = require('./helpers');
+    await openApp(page);
+    const size = 256;
+    await page.evaluate(([s, b, c]) => window.proctex.setTileOptions(s, b, c), [size, bits, forceCpu]);
+    await waitFrames(page, 2);
+    const download = page.waitForEvent('download', { timeout: 120_000 });
+    await clickWidget(page, 'export.png');
+    const file = await (await download).path();
+    const app = PNG.sync.read(fs.readFileSync(file), { skipRescale: true });
+    expect([app.width, app.height, app.depth]).toEqual([size, size, bits]);
+    expect((await state(page)).tile_progress).toBeNull();
+
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'proctex-tile-'));
+    fs.writeFileSync(path.join(dir, 'p.json'), await page.evaluate(() => window.proctex.getParams()));
+    execFileSync(path.join(ROOT, 'target', 'release', 'proctex'), ['render', path.join(dir, 'p.json'), '--seamless',
+      '--size', String(size), '--depth', String(bits), '-o', path.join(dir, 'cpu.png')]);
+    const cpu = PNG.sync.read(fs.readFileSync(path.join(dir, 'cpu.png')), { skipRescale: true });
+    const unit = bits === 16 ? 257 : 1; // one 8-bit step
+    const mae = meanDiff(app, cpu) / unit;
+    const [cols, rows] = seamRatios(app);
+    console.log(`PNG tile ${size}² ${bits}-bit (${forceCpu ? 'CPU' : 'GPU'}): vs CLI mean |diff| ${mae.toFixed(4)}/255; seam ratio columns ${cols.toFixed(3)}, rows ${rows.toFixed(3)}`);
+    expect(mae).toBeLessThan(0.05);
+    expect(cols).toBeLessThan(1.6);
+    expect(rows).toBeLessThan(1.6);
+  });
+}

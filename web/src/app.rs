@@ -20,6 +20,7 @@ use wasm_bindgen::JsValue;
 use crate::jobs::{ImageStats, Report};
 use crate::presets::{MorphPreset, Preset, STORAGE_KEY, library_json, parse_library};
 use crate::renderer::{Pass, TextureRenderer};
+use crate::tile_export::{SeamlessCpu, SeamlessGpu, png_scanlines};
 
 /// Something JS asked for, applied at the start of the next frame.
 #[derive(Debug)]
@@ -61,6 +62,12 @@ pub enum Command {
     ImportPresets(String),
     /// A built-in gallery preset (a shipped sample's analysis).
     GalleryPreset(String, Box<Params>),
+    /// PNG tile export choices: side, bits (8 or 16), CPU even with a GPU.
+    TileOptions {
+        size: u32,
+        bits: u8,
+        force_cpu: bool,
+    },
 }
 
 /// A downscaled copy of the photo for the crop panel and the split view.
@@ -167,6 +174,8 @@ pub struct Snapshot {
     pub morph_t: Option<f32>,
     /// The morph animation is playing.
     pub morph_playing: bool,
+    /// The PNG tile export in progress: fraction done.
+    pub tile_progress: Option<f32>,
     /// Undo/redo depths.
     pub undo: usize,
     /// Redo depth.
@@ -282,6 +291,37 @@ pub struct ProctexApp {
     widgets: BTreeMap<String, [f32; 4]>,
     presets: PresetsState,
     status_note: Option<String>,
+    tile: TileSettings,
+    tile_job: Option<TileJob>,
+    /// The GPU device and queue (from eframe), for off-screen work such as the PNG tile.
+    gpu: Option<(wgpu::Device, wgpu::Queue)>,
+}
+
+/// The PNG tile export's choices.
+struct TileSettings {
+    size: u32,
+    bits: u8,
+    /// Render on the CPU even with a GPU (automation: tests of the fallback).
+    force_cpu: bool,
+}
+
+/// Where a PNG tile's strips come from.
+enum TileSource {
+    Gpu(Box<SeamlessGpu>),
+    /// The CPU fallback (no GPU, or the GPU pipeline failed), a few rows per frame.
+    Cpu(Box<SeamlessCpu>),
+}
+
+/// A PNG tile export in progress: strips go to the page (`tileRows`), which compresses them.
+struct TileJob {
+    size: u32,
+    bits: u8,
+    source: TileSource,
+    /// Next row to render.
+    next_row: u32,
+    /// Rows handed to the page.
+    done_rows: u32,
+    started_ms: f64,
 }
 
 /// The presets list, its thumbnails and the morph between presets.
@@ -340,6 +380,13 @@ impl ProctexApp {
             frame: 0,
             widgets: BTreeMap::new(),
             status_note: None,
+            tile: TileSettings {
+                size: 1024,
+                bits: 8,
+                force_cpu: false,
+            },
+            tile_job: None,
+            gpu: None,
             presets: PresetsState {
                 duration_s: 4.0,
                 looping: true,
@@ -496,6 +543,17 @@ impl ProctexApp {
                 }
                 Command::SetMode(m) => self.mode = m,
                 Command::FlatShader(on) => self.flat_shader = on,
+                Command::TileOptions {
+                    size,
+                    bits,
+                    force_cpu,
+                } => {
+                    self.tile = TileSettings {
+                        size,
+                        bits,
+                        force_cpu,
+                    }
+                }
                 Command::GalleryPreset(name, params) => {
                     self.presets.gallery.push((
                         Preset {
@@ -641,6 +699,180 @@ impl ProctexApp {
             .show(ui, |ui| self.plots(ui));
     }
 
+    /// PNG tile export: size, bit depth, Export PNG… (then progress and Cancel).
+    fn tile_row(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            ui.label("PNG tile:");
+            if let Some(job) = &self.tile_job {
+                let f = job.done_rows as f32 / job.size as f32;
+                let on = match job.source {
+                    TileSource::Gpu(_) => "GPU",
+                    TileSource::Cpu(_) => "CPU",
+                };
+                ui.add(egui::ProgressBar::new(f).desired_width(120.0).text(format!(
+                    "{}² {} % ({on})",
+                    job.size,
+                    (f * 100.0) as u32
+                )));
+                let r = ui.small_button("Cancel");
+                self.record("export.png_cancel", &r);
+                if r.clicked() {
+                    host("tileAbort", &[]);
+                    self.tile_job = None;
+                    self.status_note = Some("PNG tile export cancelled".into());
+                }
+                return;
+            }
+            let r = egui::ComboBox::from_id_salt("tile_size")
+                .width(70.0)
+                .selected_text(format!("{}²", self.tile.size))
+                .show_ui(ui, |ui| {
+                    for n in [256u32, 512, 1024, 2048, 4096, 8192] {
+                        ui.selectable_value(&mut self.tile.size, n, format!("{n}²"));
+                    }
+                });
+            self.record("export.png_size", &r.response);
+            let r = egui::ComboBox::from_id_salt("tile_bits")
+                .width(60.0)
+                .selected_text(format!("{}-bit", self.tile.bits))
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut self.tile.bits, 8, "8-bit");
+                    ui.selectable_value(&mut self.tile.bits, 16, "16-bit");
+                });
+            self.record("export.png_bits", &r.response);
+            let r = ui
+                .add_enabled(self.params.is_some(), egui::Button::new("PNG…").small())
+                .on_hover_text(
+                    "Download a seamless tile of the texture, one photo pixel per tile pixel \
+                     (every band made periodic over the tile; solid textures: their plane \
+                     texture)",
+                );
+            self.record("export.png", &r);
+            if r.clicked()
+                && let Some(p) = self.params.clone()
+            {
+                self.start_tile(&p, ui.ctx());
+            }
+        });
+    }
+
+    /// Starts a PNG tile export of `params` on the GPU (CPU when there is none, or forced).
+    fn start_tile(&mut self, params: &Params, ctx: &egui::Context) {
+        let (size, bits) = (self.tile.size, self.tile.bits);
+        let gpu = if self.tile.force_cpu {
+            None
+        } else {
+            self.gpu
+                .as_ref()
+                .map(|(device, queue)| SeamlessGpu::new(device, queue, params, size, 1.0))
+        };
+        let source = match gpu {
+            Some(Ok(g)) => TileSource::Gpu(Box::new(g)),
+            other => {
+                if let Some(Err(e)) = other {
+                    web_sys::console::warn_1(
+                        &format!("PNG tile on the GPU: {e}; using the CPU").into(),
+                    );
+                }
+                match SeamlessCpu::new(params, size, 1.0) {
+                    Ok(c) => TileSource::Cpu(Box::new(c)),
+                    Err(e) => {
+                        self.error = Some(format!("PNG tile: {e}"));
+                        return;
+                    }
+                }
+            }
+        };
+        if !host(
+            "tileBegin",
+            &[
+                JsValue::from(size),
+                JsValue::from(size),
+                JsValue::from(bits as u32),
+            ],
+        ) {
+            self.error = Some("PNG tile: the page cannot write PNG files (no tileBegin)".into());
+            return;
+        }
+        self.tile_job = Some(TileJob {
+            size,
+            bits,
+            source,
+            next_row: 0,
+            done_rows: 0,
+            started_ms: now_ms(),
+        });
+        ctx.request_repaint();
+    }
+
+    /// Advances the PNG tile export by what is ready: a read-back strip from the GPU (and the
+    /// next strip submitted), or a few CPU rows (about 30 ms of work).
+    fn step_tile(&mut self, ctx: &egui::Context, frame: &eframe::Frame) {
+        if self.gpu.is_none()
+            && let Some(rs) = frame.wgpu_render_state()
+        {
+            self.gpu = Some((rs.device.clone(), rs.queue.clone()));
+        }
+        let Some(job) = &mut self.tile_job else {
+            return;
+        };
+        ctx.request_repaint();
+        let size = job.size;
+        let mut strip = None;
+        match &mut job.source {
+            TileSource::Gpu(g) => {
+                match g.take() {
+                    Some(Ok(s)) => strip = Some(s),
+                    Some(Err(e)) => {
+                        host("tileAbort", &[]);
+                        self.tile_job = None;
+                        self.error = Some(format!("PNG tile: {e}"));
+                        return;
+                    }
+                    None => {}
+                }
+                if !g.busy()
+                    && job.next_row < size
+                    && let Some((device, queue)) = &self.gpu
+                {
+                    g.submit(device, queue, job.next_row);
+                    job.next_row = (job.next_row + g.rows()).min(size);
+                }
+            }
+            TileSource::Cpu(c) => {
+                let t0 = now_ms();
+                let mut rows = Vec::new();
+                let first = job.next_row;
+                while job.next_row < size && now_ms() - t0 < 30.0 {
+                    let n = (16_384 / size).max(1);
+                    rows.extend(c.strip(job.next_row, n));
+                    job.next_row = (job.next_row + n).min(size);
+                }
+                if !rows.is_empty() {
+                    strip = Some((first, rows));
+                }
+            }
+        }
+        if let Some((_, pixels)) = strip {
+            let bytes = png_scanlines(&pixels, size as usize, job.bits);
+            host(
+                "tileRows",
+                &[js_sys::Uint8Array::from(bytes.as_slice()).into()],
+            );
+            job.done_rows += (pixels.len() / size as usize) as u32;
+        }
+        if job.done_rows >= size {
+            let name = format!("proctex-tile-{size}-{}bit.png", job.bits);
+            host("tileEnd", &[JsValue::from_str(&name)]);
+            self.status_note = Some(format!(
+                "PNG tile {size}² ({}-bit) rendered in {:.1} s",
+                job.bits,
+                (now_ms() - job.started_ms) / 1000.0
+            ));
+            self.tile_job = None;
+        }
+    }
+
     /// Save, load, rename, reorder, delete presets; choose two or more to morph between.
     fn presets_panel(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
@@ -745,6 +977,7 @@ impl ProctexApp {
                 }
             }
         });
+        self.tile_row(ui);
         ui.horizontal(|ui| {
             let r = ui.small_button("Export…");
             self.record("presets.export", &r);
@@ -1682,6 +1915,10 @@ impl ProctexApp {
                 morph_playing: self.presets.playing,
                 undo: self.undo.len(),
                 redo: self.redo.len(),
+                tile_progress: self
+                    .tile_job
+                    .as_ref()
+                    .map(|j| j.done_rows as f32 / j.size as f32),
             }
         });
     }
@@ -1698,10 +1935,11 @@ pub const SAMPLES: [&str; 6] = [
 ];
 
 impl eframe::App for ProctexApp {
-    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         self.frame += 1;
         let ctx = ui.ctx().clone();
         self.apply_commands(&ctx);
+        self.step_tile(&ctx, frame);
         let (undo, redo) = ctx.input_mut(|i| {
             let redo = i.consume_key(
                 egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,

@@ -360,6 +360,11 @@ impl SeamlessGpu {
         Some(Ok((first_row, out)))
     }
 
+    /// A strip is being rendered or read back.
+    pub fn busy(&self) -> bool {
+        self.in_flight.is_some()
+    }
+
     /// Rows per strip.
     pub fn rows(&self) -> u32 {
         self.rows

@@ -171,6 +171,23 @@ pub fn set_flat_shader(on: bool) {
     send(Command::FlatShader(on));
 }
 
+/// PNG tile export choices (the app's menus, for tests): side 16..=8192, 8 or 16 bits, and
+/// whether to render on the CPU even with a GPU (to exercise the fallback).
+#[wasm_bindgen(js_name = setTileOptions)]
+pub fn set_tile_options(size: u32, bits: u8, force_cpu: bool) -> Result<(), JsValue> {
+    if !(16..=proctex::seamless::MAX_TILE).contains(&size) || !(bits == 8 || bits == 16) {
+        return Err(JsValue::from_str(&format!(
+            "tile options: size {size} (16..=8192), bits {bits} (8 or 16)"
+        )));
+    }
+    send(Command::TileOptions {
+        size,
+        bits,
+        force_cpu,
+    });
+    Ok(())
+}
+
 /// Shows an error message in the app (e.g. a file the browser could not decode).
 #[wasm_bindgen(js_name = reportError)]
 pub fn report_error(message: String) {
