@@ -197,7 +197,7 @@ fn morph_prints_valid_params_and_rejects_bad_t() {
 }
 
 #[test]
-fn export_prints_json_and_wgsl() {
+fn export_prints_json_wgsl_and_glsl() {
     let params = tmp("export.json");
     let o = proctex(&["analyze", &sample("skimage_gravel_512.png"), "-o", &params]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -208,13 +208,29 @@ fn export_prints_json_and_wgsl() {
     let o = proctex(&["export", &params, "--format", "json"]);
     assert!(o.status.success());
     proctex::params::Params::from_json(&String::from_utf8_lossy(&o.stdout)).unwrap();
+    let o = proctex(&["export", &params, "--format", "glsl"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let glsl = String::from_utf8_lossy(&o.stdout);
+    assert!(glsl.starts_with("#version 300 es\n") && glsl.contains("vec3 proctex(vec2 p"));
     assert_eq!(
-        proctex(&["export", &params, "--format", "glsl"])
+        proctex(&["export", &params, "--format", "hlsl"])
             .status
             .code(),
         Some(2)
     );
     assert_eq!(proctex(&["export", &params]).status.code(), Some(2));
+    // A tile size out of range is a clear error, not a panic.
+    let o = proctex(&[
+        "render",
+        &params,
+        "--seamless",
+        "--size",
+        "9000",
+        "-o",
+        &tmp("tile.png"),
+    ]);
+    assert_ne!(o.status.code(), Some(0));
+    assert!(stderr(&o).contains("8192"), "{}", stderr(&o));
     assert_eq!(
         proctex(&["export", &bad("text.png"), "--format", "wgsl"])
             .status
