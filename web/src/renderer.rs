@@ -67,7 +67,58 @@ pub struct TextureRenderer {
     uploaded: Option<Params>,
 }
 
-fn r32_texture(
+/// A tile texture binding (r32float, read with textureLoad: unfilterable).
+fn tile_entry(
+    binding: u32,
+    view_dimension: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// Group 0 of every texture shader (`shaders/params.wgsl`): the params uniform, the 2D and 3D
+/// noise tiles.
+pub(crate) fn params_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("proctex params"),
+        entries: &[
+            uniform_entry(0),
+            tile_entry(1, wgpu::TextureViewDimension::D2),
+            tile_entry(2, wgpu::TextureViewDimension::D3),
+        ],
+    })
+}
+
+/// A group of one uniform buffer at binding 0 (the views' group 1).
+pub(crate) fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[uniform_entry(0)],
+    })
+}
+
+pub(crate) fn r32_texture(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
@@ -121,38 +172,8 @@ impl TextureRenderer {
             label: Some("proctex solid"),
             source: wgpu::ShaderSource::Wgsl(proctex_shaders::solid_shader().into()),
         });
-        let tile_entry = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let uniform_entry = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let params_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("proctex params"),
-            entries: &[
-                uniform_entry(0),
-                tile_entry(1, wgpu::TextureViewDimension::D2),
-                tile_entry(2, wgpu::TextureViewDimension::D3),
-            ],
-        });
-        let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("proctex view"),
-            entries: &[uniform_entry(0)],
-        });
+        let params_layout = params_layout(device);
+        let view_layout = uniform_layout(device, "proctex view");
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("proctex plane"),
             bind_group_layouts: &[Some(&params_layout), Some(&view_layout)],

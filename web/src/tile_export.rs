@@ -15,6 +15,8 @@ use proctex::params::Params;
 use proctex::render::Prepared;
 use proctex::seamless::{self, Seamless, render_rows};
 
+use crate::renderer::{params_layout, r32_texture, uniform_layout};
+
 /// Pixels per strip (the strip is `size` wide and `STRIP_PIXELS / size` rows high).
 const STRIP_PIXELS: u32 = 1 << 18;
 
@@ -48,58 +50,6 @@ pub struct SeamlessGpu {
     in_flight: Option<(u32, u32)>,
 }
 
-fn r32_texture(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    n: u32,
-    data: &[f32],
-    d3: bool,
-) -> wgpu::TextureView {
-    let size = wgpu::Extent3d {
-        width: n,
-        height: n,
-        depth_or_array_layers: if d3 { n } else { 1 },
-    };
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("seamless tile"),
-        size,
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: if d3 {
-            wgpu::TextureDimension::D3
-        } else {
-            wgpu::TextureDimension::D2
-        },
-        format: wgpu::TextureFormat::R32Float,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    let bytes: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
-    queue.write_texture(
-        wgpu::TexelCopyTextureInfo {
-            texture: &texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        &bytes,
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(4 * n),
-            rows_per_image: Some(n),
-        },
-        size,
-    );
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(if d3 {
-            wgpu::TextureViewDimension::D3
-        } else {
-            wgpu::TextureViewDimension::D2
-        }),
-        ..Default::default()
-    })
-}
-
 impl SeamlessGpu {
     /// Prepares the export of `params`' seamless tile of `size²` pixels of `pixel_size` world
     /// units (validates the size first).
@@ -118,38 +68,8 @@ impl SeamlessGpu {
             label: Some("proctex seamless"),
             source: wgpu::ShaderSource::Wgsl(proctex_shaders::seamless_shader().into()),
         });
-        let tile_entry = |binding, view_dimension| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let uniform_entry = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let params_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("seamless params"),
-            entries: &[
-                uniform_entry(0),
-                tile_entry(1, wgpu::TextureViewDimension::D2),
-                tile_entry(2, wgpu::TextureViewDimension::D3),
-            ],
-        });
-        let seamless_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("seamless"),
-            entries: &[uniform_entry(0)],
-        });
+        let params_layout = params_layout(device);
+        let seamless_layout = uniform_layout(device, "seamless");
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("seamless"),
             bind_group_layouts: &[Some(&params_layout), Some(&seamless_layout)],
@@ -193,8 +113,29 @@ impl SeamlessGpu {
         };
         let params_buffer = uniform("seamless params", &prep.uniform_bytes());
         let seamless_buffer = uniform("seamless", &seamless.uniform_bytes(0));
-        let v2 = r32_texture(device, queue, tile.n as u32, &tile.data, false);
-        let v3 = r32_texture(device, queue, 1, &[0.0], true);
+        let v2 = r32_texture(
+            device,
+            queue,
+            "seamless tile2",
+            tile.n as u32,
+            1,
+            wgpu::TextureDimension::D2,
+            &tile.data,
+        )
+        .create_view(&wgpu::TextureViewDescriptor::default());
+        let v3 = r32_texture(
+            device,
+            queue,
+            "seamless tile3",
+            1,
+            1,
+            wgpu::TextureDimension::D3,
+            &[0.0],
+        )
+        .create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D3),
+            ..Default::default()
+        });
         let params_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("seamless params"),
             layout: &params_layout,
