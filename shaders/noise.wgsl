@@ -1,4 +1,5 @@
-// Wavelet noise evaluation and band clamping. Twins: analyzer/src/noise.rs
+// Wavelet noise evaluation and band clamping (noise3 reads the 3D tile through tile3_side and
+// tile3_texel: tile3.wgsl or tile3_atlas.wgsl). Twins: analyzer/src/noise.rs
 // (bspline_weights, noise2, noise3, band_fade; wrap_coord and wrap_index are private helpers
 // there). Same operation order, f32.
 
@@ -47,7 +48,7 @@ fn noise2(p: vec2<f32>) -> f32 {
 }
 
 fn noise3(p: vec3<f32>) -> f32 {
-    let ni = i32(textureDimensions(tile3).x);
+    let ni = tile3_side();
     let nf = f32(ni);
     let bx = bspline_weights(wrap_coord(p.x, nf));
     let by = bspline_weights(wrap_coord(p.y, nf));
@@ -65,7 +66,7 @@ fn noise3(p: vec3<f32>) -> f32 {
             let row = wrap_index(by.mid + dy - 1, ni);
             var line = 0.0;
             for (var dx = 0; dx < 3; dx++) {
-                line += bx.w[dx] * textureLoad(tile3, vec3<i32>(cols[dx], row, slab), 0).r;
+                line += bx.w[dx] * tile3_texel(vec3<i32>(cols[dx], row, slab));
             }
             plane += by.w[dy] * line;
         }

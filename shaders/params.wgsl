@@ -27,6 +27,7 @@ struct Params {
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
-// Wavelet-noise tiles (r32float, read with textureLoad: exact coefficients, no filtering).
+// The 2D wavelet-noise tile (r32float, read with textureLoad: exact coefficients, no
+// filtering). The 3D tile of solid textures is bound at binding 2 by tile3.wgsl (the app's 3D
+// texture) or tile3_atlas.wgsl (exported snippets).
 @group(0) @binding(1) var tile2: texture_2d<f32>;
-@group(0) @binding(2) var tile3: texture_3d<f32>;

@@ -10,10 +10,13 @@
 //! The GLSL snippet is the same library in GLSL ES 3.00 (`shaders/glsl/`, twins of the WGSL),
 //! one text that compiles as each of the host's five shaders by a `#define` after `#version`.
 //!
-//! Solid (3D) textures are not exported yet.
+//! Solid (3D) textures export too: their 64³ tile is baked by four passes into a 2D atlas of its
+//! slices (`shaders/bake3.wgsl`, `atlas3.wgsl`), which every host can render into, and `noise3`
+//! reads it through `tile3_atlas.wgsl`; `proctex3(p, pixel_size)` evaluates the solid texture.
 
 use crate::error::{Error, Result};
-use crate::params::{MAX_BANDS, MAX_KNOTS, Params};
+use crate::morph::quat_from_matrix;
+use crate::params::{MAX_BANDS, MAX_KNOTS, Model, Params};
 use crate::render::{Prepared, tile_for};
 use crate::rng::stream;
 
@@ -63,14 +66,9 @@ impl Lang {
     }
 }
 
-/// The params as a `Params` value (same layout as the app's uniform block) in `lang`.
-fn params_value(p: &Prepared, lang: Lang) -> String {
-    let basis = lang.array(p.basis.iter().map(|r| [r[0], r[1], r[2], 0.0]), 3);
-    let weights = lang.array(
-        (0..MAX_BANDS).map(|j| [p.weights[0][j], p.weights[1][j], p.weights[2][j], 0.0]),
-        MAX_BANDS,
-    );
-    let offsets = lang.array(
+/// The band offsets as the `offsets` array of `Params`.
+fn offsets_array(p: &Prepared, lang: Lang) -> String {
+    lang.array(
         (0..3)
             .flat_map(|c| (0..MAX_BANDS).map(move |j| (c, j)))
             .map(|(c, j)| {
@@ -78,7 +76,21 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
                 [o[0], o[1], o[2], 0.0]
             }),
         3 * MAX_BANDS,
+    )
+}
+
+/// The line of `shaders/glsl/morph.glsl` that the generated constants replace (GLSL needs them
+/// after the structs and before the functions).
+const GLSL_MORPH_CONSTANTS: &str = "// (generated constants)";
+
+/// The params as a `Params` value (same layout as the app's uniform block) in `lang`.
+fn params_value(p: &Prepared, lang: Lang) -> String {
+    let basis = lang.array(p.basis.iter().map(|r| [r[0], r[1], r[2], 0.0]), 3);
+    let weights = lang.array(
+        (0..MAX_BANDS).map(|j| [p.weights[0][j], p.weights[1][j], p.weights[2][j], 0.0]),
+        MAX_BANDS,
     );
+    let offsets = offsets_array(p, lang);
     let knots = lang.array(
         (0..MAX_KNOTS).map(|k| {
             [
@@ -104,99 +116,368 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
     )
 }
 
-/// The complete WGSL shader of a plane texture: `proctex(p, pixel_size)`, the bake passes and
-/// a minimal full-screen entry point (`vs_main`/`fs_main`, one world unit per pixel).
-pub fn wgsl(params: &Params) -> Result<String> {
-    if params.solid {
-        return Err(Error::Option(
-            "WGSL export of solid (3D) textures is not supported yet; export the plane texture"
-                .into(),
-        ));
-    }
-    let prep = Prepared::new(params);
+/// The tile-bake constants of a texture (its 2D or 3D tile, from the seed).
+fn bake_inputs(params: &Params) -> (u32, u32, u32, f64, f64) {
     let tile = tile_for(params);
-    let bake = proctex_shaders::bake_constants(
+    let stream = if params.solid {
+        stream::TILE_3D
+    } else {
+        stream::TILE_2D
+    };
+    (
         tile.n as u32,
         params.seed,
-        stream::TILE_2D,
+        stream,
         tile.stats.raw_mean,
         1.0 / tile.stats.raw_variance.sqrt(),
-    );
-    let header = proctex_shaders::PARAMS.replace(
-        "@group(0) @binding(0) var<uniform> params: Params;",
-        &format!(
-            "var<private> params: Params = {};",
-            params_value(&prep, Lang::Wgsl)
-        ),
-    );
-    if header == proctex_shaders::PARAMS {
-        return Err(Error::Option(
-            "internal: params.wgsl no longer declares the uniform".into(),
-        ));
-    }
-    Ok(format!(
-        "{HOST_NOTES}\n{bake}\n{header}\n{noise}\n{histogram}\n{texture}\n{bakepasses}\n{ENTRY}",
-        noise = proctex_shaders::NOISE,
-        histogram = proctex_shaders::HISTOGRAM,
-        texture = proctex_shaders::TEXTURE,
-        bakepasses = proctex_shaders::BAKE,
-    ))
+    )
 }
 
-/// The complete GLSL ES 3.00 shader of a plane texture: one text that compiles as the display
-/// fragment shader as-is, as the full-screen vertex shader with `#define PROCTEX_VERTEX`, and
-/// as bake pass 1, 2, 3 with `#define PROCTEX_PASS 1|2|3` (each define inserted after the
-/// `#version` line).
-pub fn glsl(params: &Params) -> Result<String> {
-    if params.solid {
-        return Err(Error::Option(
-            "GLSL export of solid (3D) textures is not supported yet; export the plane texture"
-                .into(),
-        ));
+/// What a snippet renders: one texture, or a morph through two or more with t as a uniform.
+enum Subject<'a> {
+    Texture(&'a Params),
+    Morph(Box<MorphTables>),
+}
+
+impl Subject<'_> {
+    /// The texture whose tile the snippet bakes (a morph renders with its first key's).
+    fn tile_params(&self) -> &Params {
+        match self {
+            Subject::Texture(p) => p,
+            Subject::Morph(m) => &m.first,
+        }
     }
-    let prep = Prepared::new(params);
-    let tile = tile_for(params);
-    let g = proctex_shaders::glsl::PARAMS;
-    let bake = proctex_shaders::glsl::bake_constants(
-        tile.n as u32,
-        params.seed,
-        stream::TILE_2D,
-        tile.stats.raw_mean,
-        1.0 / tile.stats.raw_variance.sqrt(),
-    );
-    Ok(format!(
-        "#version 300 es\n{GLSL_HOST_NOTES}\n\
-         precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n\
+
+    fn is_morph(&self) -> bool {
+        matches!(self, Subject::Morph(_))
+    }
+}
+
+/// The complete WGSL shader of a texture: `proctex(p, pixel_size)` (and `proctex3` for solid
+/// textures), the tile-bake passes and a minimal full-screen entry point (`vs_main`/`fs_main`,
+/// one world unit per pixel; the z = 0 slice of a solid texture).
+pub fn wgsl(params: &Params) -> Result<String> {
+    params.validate()?;
+    Ok(wgsl_of(&Subject::Texture(params)))
+}
+
+/// The complete GLSL ES 3.00 shader of a texture: one text that compiles as the display
+/// fragment shader as-is, as the full-screen vertex shader with `#define PROCTEX_VERTEX`, and
+/// as the tile-bake passes with `#define PROCTEX_PASS 1|2|3` (plane) or `1|2|3|4` (solid), each
+/// define inserted after the `#version` line.
+pub fn glsl(params: &Params) -> Result<String> {
+    params.validate()?;
+    Ok(glsl_of(&Subject::Texture(params)))
+}
+
+/// The complete WGSL shader of the morph through `keys` (as [`crate::morph::morph_path`]) with
+/// t as a uniform: as [`wgsl`], and `proctex(p, pixel_size, t)` rebuilds the params of `t` from
+/// every key's constants (`shaders/morph.wgsl`).
+pub fn morph_wgsl(keys: &[Params]) -> Result<String> {
+    Ok(wgsl_of(&Subject::Morph(Box::new(MorphTables::new(keys)?))))
+}
+
+/// The complete GLSL ES 3.00 shader of the morph through `keys` with t as the uniform
+/// `proctex_t` (stages as [`glsl`]).
+pub fn morph_glsl(keys: &[Params]) -> Result<String> {
+    Ok(glsl_of(&Subject::Morph(Box::new(MorphTables::new(keys)?))))
+}
+
+fn wgsl_of(subject: &Subject) -> String {
+    let tp = subject.tile_params();
+    let (n, seed, stream, mean, inv_sd) = bake_inputs(tp);
+    let bake = proctex_shaders::bake_constants(n, seed, stream, mean, inv_sd);
+    let (header, morph) = match subject {
+        Subject::Texture(p) => (
+            proctex_shaders::params_private(Some(&params_value(&Prepared::new(p), Lang::Wgsl))),
+            String::new(),
+        ),
+        Subject::Morph(m) => (
+            proctex_shaders::params_private(None),
+            format!("{}\n{}", m.constants(Lang::Wgsl), proctex_shaders::MORPH),
+        ),
+    };
+    let (notes, passes) = if tp.solid {
+        (wgsl_host_notes_solid(n), proctex_shaders::BAKE3)
+    } else {
+        (wgsl_host_notes_plane(n), proctex_shaders::BAKE2)
+    };
+    let notes = if subject.is_morph() {
+        format!("{notes}\n{WGSL_MORPH_NOTES}")
+    } else {
+        notes
+    };
+    [
+        notes.as_str(),
+        &bake,
+        &header,
+        &morph,
+        proctex_shaders::ATLAS3,
+        proctex_shaders::TILE3_ATLAS,
+        proctex_shaders::NOISE,
+        proctex_shaders::HISTOGRAM,
+        proctex_shaders::TEXTURE,
+        proctex_shaders::BAKE,
+        passes,
+        &wgsl_entry(tp.solid, subject.is_morph()),
+    ]
+    .join("\n")
+}
+
+fn glsl_of(subject: &Subject) -> String {
+    use proctex_shaders::glsl as gl;
+    let tp = subject.tile_params();
+    let (n, seed, stream, mean, inv_sd) = bake_inputs(tp);
+    let bake = gl::bake_constants(n, seed, stream, mean, inv_sd);
+    let value = match subject {
+        Subject::Texture(p) => format!(
+            "const Params params = {};",
+            params_value(&Prepared::new(p), Lang::Glsl)
+        ),
+        Subject::Morph(m) => format!(
+            "{}\n// The params of t, set by proctex() before it shades.\nParams params;",
+            gl::MORPH.replace(GLSL_MORPH_CONSTANTS, &m.constants(Lang::Glsl))
+        ),
+    };
+    let (notes, solid, bakepasses, tile3) = if tp.solid {
+        (
+            glsl_host_notes_solid(n),
+            "#define PROCTEX_SOLID\n",
+            format!("{}\n{}\n{}", gl::ATLAS3, gl::BAKE, gl::BAKE3),
+            format!("{}\n{}", gl::ATLAS3, gl::TILE3_ATLAS),
+        )
+    } else {
+        (
+            glsl_host_notes_plane(n),
+            "",
+            format!("{}\n{}", gl::BAKE, gl::BAKE2),
+            String::new(),
+        )
+    };
+    let notes = if subject.is_morph() {
+        format!("{notes}\n{GLSL_MORPH_NOTES}")
+    } else {
+        notes
+    };
+    format!(
+        "#version 300 es\n{notes}\n\
+         precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n{solid}\
          #if defined(PROCTEX_VERTEX)\n{GLSL_VERTEX}\n\
          #elif defined(PROCTEX_PASS)\n{bake}\n{bakepasses}\n\
-         #else\n{g}\nconst Params params = {};\n{noise}\n{histogram}\n{texture}\n{GLSL_ENTRY}\n\
+         #else\n{params}\n{value}\n{tile3}\n{noise}\n{histogram}\n{texture}\n{entry}\n\
          #endif\n",
-        params_value(&prep, Lang::Glsl),
-        bakepasses = proctex_shaders::glsl::BAKE,
-        noise = proctex_shaders::glsl::NOISE,
-        histogram = proctex_shaders::glsl::HISTOGRAM,
-        texture = proctex_shaders::glsl::TEXTURE,
-    ))
+        params = gl::PARAMS,
+        noise = gl::NOISE,
+        histogram = gl::HISTOGRAM,
+        texture = gl::TEXTURE,
+        entry = glsl_entry(tp.solid, subject.is_morph()),
+    )
 }
 
-const GLSL_HOST_NOTES: &str = "\
+/// A morph's keys as the constants of `shaders/morph.wgsl`: per segment both ends' interpolated
+/// quantities (knots resampled to the segment's count, as [`crate::morph::morph`] does), and
+/// every key's own params for the keys' t (where `morph_path` returns a key exactly).
+struct MorphTables {
+    /// The first key, whose seed (tile and band offsets) the whole morph renders with.
+    first: Params,
+    /// Per segment: its two ends and the blend's counts.
+    segments: Vec<([MorphKey; 2], [u32; 4])>,
+    /// The params at each key's t: `keys[i]` with the first key's seed, and the end of the path.
+    ends: Vec<Prepared>,
+}
+
+/// One end of a morph segment (struct `MorphKey` of `shaders/morph.wgsl`).
+struct MorphKey {
+    mean: [f32; 4],
+    quat: [f32; 4],
+    pose: [f32; 4],
+    weights: [[f32; 4]; MAX_BANDS],
+    knots: [[f32; 4]; MAX_KNOTS],
+}
+
+impl MorphTables {
+    fn new(keys: &[Params]) -> Result<MorphTables> {
+        if keys.len() < 2 {
+            return Err(Error::Option("a morph needs two or more textures".into()));
+        }
+        for k in keys {
+            k.validate()?;
+        }
+        if keys.iter().any(|k| k.solid != keys[0].solid) {
+            return Err(Error::Option(
+                "cannot export a morph between plane and solid textures: make them all plane or \
+                 all solid"
+                    .into(),
+            ));
+        }
+        let seed = keys[0].seed;
+        let with_first_seed = |p: &Params| {
+            let mut p = p.clone();
+            p.seed = seed;
+            p.source = None;
+            p
+        };
+        let mut ends: Vec<Prepared> = keys[..keys.len() - 1]
+            .iter()
+            .map(|k| Prepared::new(&with_first_seed(k)))
+            .collect();
+        ends.push(Prepared::new(&crate::morph::morph_path(keys, 1.0)?));
+        let segments = keys
+            .windows(2)
+            .map(|w| {
+                let (Model::Noise(ma), Model::Noise(mb)) = (&w[0].model, &w[1].model);
+                let k = ma.histogram.knots[0].len().max(mb.histogram.knots[0].len()) - 1;
+                let turn = crate::morph::shorter_turn(
+                    w[0].transform.rotation_deg,
+                    w[1].transform.rotation_deg,
+                );
+                let end = |p: &Params, m: &crate::params::NoiseModel| {
+                    let q = quat_from_matrix(p.colour.basis.map(|r| r.map(|v| v as f64)));
+                    let knots = crate::morph::effective_knots(m, k);
+                    let mut key = MorphKey {
+                        mean: [
+                            p.colour.mean[0],
+                            p.colour.mean[1],
+                            p.colour.mean[2],
+                            p.colour.contrast,
+                        ],
+                        quat: q.map(|v| v as f32),
+                        pose: [p.transform.scale.ln(), p.transform.rotation_deg, turn, 0.0],
+                        weights: [[0.0; 4]; MAX_BANDS],
+                        knots: [[0.0; 4]; MAX_KNOTS],
+                    };
+                    for c in 0..3 {
+                        for (j, &wt) in m.weights[c].iter().enumerate().take(MAX_BANDS) {
+                            key.weights[j][c] = wt;
+                        }
+                        for (j, &v) in knots[c].iter().enumerate().take(MAX_KNOTS) {
+                            key.knots[j][c] = v;
+                        }
+                    }
+                    key
+                };
+                let counts = [
+                    ma.bands().max(mb.bands()) as u32,
+                    (k + 1) as u32,
+                    w[0].solid as u32,
+                    (ma.histogram.enabled || mb.histogram.enabled) as u32,
+                ];
+                ([end(&w[0], ma), end(&w[1], mb)], counts)
+            })
+            .collect();
+        Ok(MorphTables {
+            first: with_first_seed(&keys[0]),
+            segments,
+            ends,
+        })
+    }
+
+    /// The generated constants of `shaders/morph.wgsl` (or its GLSL twin) in `lang`.
+    fn constants(&self, lang: Lang) -> String {
+        let key = |k: &MorphKey| {
+            format!(
+                "MorphKey(\n    {},\n    {},\n    {},\n    {},\n    {}\n)",
+                lang.vec4(k.mean),
+                lang.vec4(k.quat),
+                lang.vec4(k.pose),
+                lang.array(k.weights.iter().copied(), MAX_BANDS),
+                lang.array(k.knots.iter().copied(), MAX_KNOTS),
+            )
+        };
+        let segments: Vec<String> = self
+            .segments
+            .iter()
+            .map(|(ends, counts)| {
+                format!(
+                    "MorphSegment(\n{},\n{},\n{}\n)",
+                    key(&ends[0]),
+                    key(&ends[1]),
+                    lang.uvec4(*counts)
+                )
+            })
+            .collect();
+        let ends: Vec<String> = self.ends.iter().map(|p| params_value(p, lang)).collect();
+        let offsets = offsets_array(&self.ends[0], lang);
+        let (s, e) = (segments.len(), ends.len());
+        match lang {
+            Lang::Wgsl => format!(
+                "const MORPH_SEGMENT_COUNT: u32 = {s}u;\n\
+                 const MORPH_OFFSETS: array<vec4<f32>, {}> = {offsets};\n\
+                 const MORPH_SEGMENTS: array<MorphSegment, {s}> = array<MorphSegment, {s}>(\n{}\n);\n\
+                 const MORPH_ENDS: array<Params, {e}> = array<Params, {e}>(\n{}\n);\n",
+                3 * MAX_BANDS,
+                segments.join(",\n"),
+                ends.join(",\n"),
+            ),
+            Lang::Glsl => format!(
+                "const uint MORPH_SEGMENT_COUNT = {s}u;\n\
+                 const vec4 MORPH_OFFSETS[{}] = {offsets};\n\
+                 const MorphSegment MORPH_SEGMENTS[{s}] = MorphSegment[{s}](\n{}\n);\n\
+                 const Params MORPH_ENDS[{e}] = Params[{e}](\n{}\n);\n",
+                3 * MAX_BANDS,
+                segments.join(",\n"),
+                ends.join(",\n"),
+            ),
+        }
+    }
+}
+/// "W x H" of a bake target.
+fn atlas_size(w: u32, h: u32, times: &str) -> String {
+    format!("{w} {times} {h}")
+}
+
+fn glsl_host_notes_plane(n: u32) -> String {
+    format!(
+        "\
 // Proctex texture, exported by `proctex export --format glsl` (params format proctex/1).
 // GLSL ES 3.00 (WebGL2). For desktop GLSL, replace the first line with `#version 330 core`.
 // This one text is five programs' shaders: insert one line after `#version` to pick the stage.
 //   `#define PROCTEX_VERTEX`  the vertex shader of every program: a full-screen triangle,
 //                             drawArrays(TRIANGLES, 0, 3) with no attributes;
-//   `#define PROCTEX_PASS 1`  bake pass 1 into an R32F target A of N/2 x N (N: the tile side
-//                             below), no textures;
-//   `#define PROCTEX_PASS 2`  bake pass 2 into an R32F target B of N x N/2, A bound to the
+//   `#define PROCTEX_PASS 1`  bake pass 1 into an R32F target A of {h} x {n}, no textures;
+//   `#define PROCTEX_PASS 2`  bake pass 2 into an R32F target B of {n} x {h}, A bound to the
 //                             sampler `proctex_bake_src`;
-//   `#define PROCTEX_PASS 3`  bake pass 3 into an R32F target T of N x N, B bound to
+//   `#define PROCTEX_PASS 3`  bake pass 3 into an R32F target T of {n} x {n}, B bound to
 //                             `proctex_bake_src`;
 //   nothing                   the texture: T bound to `proctex_tile2`, one world unit (one photo
 //                             pixel) per screen pixel, y down from the top of a viewport
 //                             `proctex_height` pixels high; or call `proctex(p, pixel_size)`
 //                             from your own shader (p in world units).
 // Bake once (rendering into R32F needs EXT_color_buffer_float in WebGL2); textures are read
-// with texelFetch, so NEAREST filtering and no mipmaps.";
+// with texelFetch, so NEAREST filtering and no mipmaps.",
+        h = n / 2
+    )
+}
+
+fn glsl_host_notes_solid(n: u32) -> String {
+    format!(
+        "\
+// Proctex solid (3D) texture, exported by `proctex export --format glsl` (params format
+// proctex/1). GLSL ES 3.00 (WebGL2). For desktop GLSL, replace the first line with
+// `#version 330 core`. This one text is six programs' shaders: insert one line after `#version`
+// to pick the stage.
+//   `#define PROCTEX_VERTEX`  the vertex shader of every program: a full-screen triangle,
+//                             drawArrays(TRIANGLES, 0, 3) with no attributes;
+//   `#define PROCTEX_PASS 1`  bake pass 1 into an R32F target A of {a}, no textures;
+//   `#define PROCTEX_PASS 2`  bake pass 2 into an R32F target B of {b}, A bound to the sampler
+//                             `proctex_bake_src`;
+//   `#define PROCTEX_PASS 3`  bake pass 3 into an R32F target C of {b}, B bound to
+//                             `proctex_bake_src`;
+//   `#define PROCTEX_PASS 4`  bake pass 4 into an R32F target T of {t}, C bound to
+//                             `proctex_bake_src`;
+//   nothing                   the texture: T bound to `proctex_tile3`; shows the z = 0 slice at
+//                             one world unit (one photo pixel) per screen pixel, y down from the
+//                             top of a viewport `proctex_height` pixels high. Or call
+//                             `proctex3(p, pixel_size)` (p a 3D point in world units) or
+//                             `proctex(p, pixel_size)` (the z = 0 plane) from your own shader.
+// The targets are 2D atlases of the {n}^3 noise tile's slices (8 slices per row). Bake once
+// (rendering into R32F needs EXT_color_buffer_float in WebGL2); textures are read with
+// texelFetch, so NEAREST filtering and no mipmaps.",
+        a = atlas_size(4 * n, n * n / 8, "x"),
+        b = atlas_size(8 * n, n * n / 16, "x"),
+        t = atlas_size(8 * n, n * n / 8, "x"),
+    )
+}
 
 const GLSL_VERTEX: &str = "\
 void main() {
@@ -205,49 +486,155 @@ void main() {
     gl_Position = vec4(x, y, 0.0, 1.0);
 }";
 
-const GLSL_ENTRY: &str = "
-// The texture at world point p (photo pixels) for a pixel footprint of pixel_size units.
-vec3 proctex(vec2 p, float pixel_size) {
-    return shade(vec3(p, 0.0), log2(pixel_size * params.transform.x));
+fn wgsl_host_notes_plane(n: u32) -> String {
+    format!(
+        "\
+// Proctex texture, exported by `proctex export --format wgsl` (params format proctex/1).
+// Host, once: make three r32float render targets and draw a full-screen triangle (3 vertices,
+// no buffers) into each with `vs_bake` and, in order,
+//   fs_bake_down_x into A ({h} × {n}), no bindings;
+//   fs_bake_down_y into B ({n} × {h}), A bound at @group(0) @binding(0);
+//   fs_bake_tile   into T ({n} × {n}), B bound at @group(0) @binding(0).
+// Then draw with `vs_main`/`fs_main` (one world unit = one photo pixel per screen pixel), T at
+// @group(0) @binding(1) and @binding(2); or call `proctex(p, pixel_size)` from your own
+// fragment shader (p in world units).
+// Textures are read with textureLoad (unfilterable float is enough).",
+        h = n / 2
+    )
 }
 
+fn wgsl_host_notes_solid(n: u32) -> String {
+    format!(
+        "\
+// Proctex solid (3D) texture, exported by `proctex export --format wgsl` (params format
+// proctex/1). Host, once: make four r32float render targets and draw a full-screen triangle
+// (3 vertices, no buffers) into each with `vs_bake` and, in order,
+//   fs_bake3_down_x into A ({a}), no bindings;
+//   fs_bake3_down_y into B ({b}), A bound at @group(0) @binding(0);
+//   fs_bake3_down_z into C ({b}), B bound at @group(0) @binding(0);
+//   fs_bake3_tile   into T ({t}), C bound at @group(0) @binding(0).
+// (2D atlases of the {n}³ noise tile's slices, 8 slices per row.) Then draw with
+// `vs_main`/`fs_main` (the z = 0 slice, one world unit = one photo pixel per screen pixel), T at
+// @group(0) @binding(1) and @binding(2); or call `proctex3(p, pixel_size)` (p a 3D point in
+// world units) or `proctex(p, pixel_size)` (the z = 0 plane) from your own fragment shader.
+// Textures are read with textureLoad (unfilterable float is enough).",
+        a = atlas_size(4 * n, n * n / 8, "×"),
+        b = atlas_size(8 * n, n * n / 16, "×"),
+        t = atlas_size(8 * n, n * n / 8, "×"),
+    )
+}
+
+const WGSL_MORPH_NOTES: &str = "\
+// A morph with t as a uniform: fs_main reads t from a 16-byte uniform buffer at @group(0)
+// @binding(3) (t in its first f32: 0 the first texture, 1 the last); your own shader calls
+// `proctex(p, pixel_size, t)`, which rebuilds the params of t (a few hundred flops) and shades.";
+
+const GLSL_MORPH_NOTES: &str = "\
+// A morph with t as a uniform: set `uniform float proctex_t` (0 the first texture, 1 the last)
+// for the display program; your own shader calls `proctex(p, pixel_size, t)`, which rebuilds
+// the params of t (a few hundred flops) and shades.";
+
+/// The snippet's public functions and the full-screen entry point, in WGSL.
+fn wgsl_entry(solid: bool, morph: bool) -> String {
+    let (t_param, t_arg, set, t_uniform) = if morph {
+        (
+            ", t: f32",
+            ", t",
+            "    params = morph_params(t);\n",
+            ", proctex_t.x",
+        )
+    } else {
+        ("", "", "", "")
+    };
+    let of_t = if morph { " at morph t" } else { "" };
+    let mut out = String::new();
+    if morph {
+        out += "\n// The morph's t in x (0: the first texture, 1: the last).\n\
+                @group(0) @binding(3) var<uniform> proctex_t: vec4<f32>;\n";
+    }
+    if solid {
+        out += &format!(
+            "\n// The solid texture{of_t} at world point p (photo pixels) for a pixel footprint of\n\
+             // pixel_size units.\n\
+             fn proctex3(p: vec3<f32>, pixel_size: f32{t_param}) -> vec3<f32> {{\n{set}\
+             \x20   return shade(p, log2(pixel_size * params.transform.x));\n}}\n\n\
+             // Its z = 0 plane.\n\
+             fn proctex(p: vec2<f32>, pixel_size: f32{t_param}) -> vec3<f32> {{\n\
+             \x20   return proctex3(vec3<f32>(p, 0.0), pixel_size{t_arg});\n}}\n"
+        );
+    } else {
+        out += &format!(
+            "\n// The texture{of_t} at world point p (photo pixels) for a pixel footprint of\n\
+             // pixel_size units.\n\
+             fn proctex(p: vec2<f32>, pixel_size: f32{t_param}) -> vec3<f32> {{\n{set}\
+             \x20   return shade(vec3<f32>(p, 0.0), log2(pixel_size * params.transform.x));\n}}\n"
+        );
+    }
+    out += &format!(
+        "
+@vertex
+fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {{
+    let x = f32(i32(i & 1u) * 4 - 1);
+    let y = f32(i32(i >> 1u) * 4 - 1);
+    return vec4<f32>(x, y, 0.0, 1.0);
+}}
+
+@fragment
+fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {{
+    return vec4<f32>(proctex(frag.xy, 1.0{t_uniform}), 1.0);
+}}
+"
+    );
+    out
+}
+
+/// The snippet's public functions and the display program's `main`, in GLSL.
+fn glsl_entry(solid: bool, morph: bool) -> String {
+    let (t_param, t_arg, set, t_uniform) = if morph {
+        (
+            ", float t",
+            ", t",
+            "    params = morph_params(t);\n",
+            ", proctex_t",
+        )
+    } else {
+        ("", "", "", "")
+    };
+    let of_t = if morph { " at morph t" } else { "" };
+    let mut out = String::new();
+    if solid {
+        out += &format!(
+            "\n// The solid texture{of_t} at world point p (photo pixels) for a pixel footprint of\n\
+             // pixel_size units.\n\
+             vec3 proctex3(vec3 p, float pixel_size{t_param}) {{\n{set}\
+             \x20   return shade(p, log2(pixel_size * params.transform.x));\n}}\n\n\
+             // Its z = 0 plane.\n\
+             vec3 proctex(vec2 p, float pixel_size{t_param}) {{\n\
+             \x20   return proctex3(vec3(p, 0.0), pixel_size{t_arg});\n}}\n"
+        );
+    } else {
+        out += &format!(
+            "\n// The texture{of_t} at world point p (photo pixels) for a pixel footprint of\n\
+             // pixel_size units.\n\
+             vec3 proctex(vec2 p, float pixel_size{t_param}) {{\n{set}\
+             \x20   return shade(vec3(p, 0.0), log2(pixel_size * params.transform.x));\n}}\n"
+        );
+    }
+    if morph {
+        out +=
+            "\n// The morph's t (0: the first texture, 1: the last).\nuniform float proctex_t;\n";
+    }
+    out += &format!(
+        "
 // Viewport height in pixels: world y grows downwards from the top of the viewport, as in the
 // app and the WGSL export (0 if unset: the texture still shows, shifted).
 uniform float proctex_height;
 layout(location = 0) out vec4 proctex_out;
 
-void main() {
+void main() {{
     vec2 p = vec2(gl_FragCoord.x, proctex_height - gl_FragCoord.y);
-    proctex_out = vec4(proctex(p, 1.0), 1.0);
-}";
-
-const HOST_NOTES: &str = "\
-// Proctex texture, exported by `proctex export --format wgsl` (params format proctex/1).
-// Host, once: make three r32float render targets and draw a full-screen triangle (3 vertices,
-// no buffers) into each with `vs_bake` and, in order,
-//   fs_bake_down_x into A (N/2 × N), no bindings;
-//   fs_bake_down_y into B (N × N/2), A bound at @group(0) @binding(0);
-//   fs_bake_tile   into T (N × N),   B bound at @group(0) @binding(0).
-// Then draw with `vs_main`/`fs_main` (one world unit = one photo pixel per screen pixel), T at
-// @group(0) @binding(1) and a 1×1×1 r32float 3D texture at @binding(2); or call
-// `proctex(p, pixel_size)` from your own fragment shader (p in world units).
-// Textures are read with textureLoad (unfilterable float is enough).";
-
-const ENTRY: &str = "
-// The texture at world point p (photo pixels) for a pixel footprint of pixel_size units.
-fn proctex(p: vec2<f32>, pixel_size: f32) -> vec3<f32> {
-    return shade(vec3<f32>(p, 0.0), log2(pixel_size * params.transform.x));
+    proctex_out = vec4(proctex(p, 1.0{t_uniform}), 1.0);
+}}"
+    );
+    out
 }
-
-@vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let x = f32(i32(i & 1u) * 4 - 1);
-    let y = f32(i32(i >> 1u) * 4 - 1);
-    return vec4<f32>(x, y, 0.0, 1.0);
-}
-
-@fragment
-fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(proctex(frag.xy, 1.0), 1.0);
-}
-";

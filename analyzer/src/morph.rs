@@ -116,7 +116,7 @@ pub fn slerp(a: Quat, b: Quat, t: f64) -> Quat {
 
 /// The inverse-CDF knots a noise model renders with: its own when the histogram is on, the
 /// identity curve otherwise; resampled to `k + 1` knots.
-fn effective_knots(m: &NoiseModel, k: usize) -> [Vec<f32>; 3] {
+pub(crate) fn effective_knots(m: &NoiseModel, k: usize) -> [Vec<f32>; 3] {
     let sigma = m.sigma();
     [0, 1, 2].map(|c| {
         (0..=k)
@@ -137,6 +137,12 @@ fn effective_knots(m: &NoiseModel, k: usize) -> [Vec<f32>; 3] {
     })
 }
 
+/// The turn from angle `a` to angle `b` (degrees) the shorter way round.
+pub(crate) fn shorter_turn(a: f32, b: f32) -> f32 {
+    let dr = (b - a).rem_euclid(360.0);
+    if dr > 180.0 { dr - 360.0 } else { dr }
+}
+
 fn lerp(a: f32, b: f32, t: f32) -> f32 {
     a + t * (b - a)
 }
@@ -150,10 +156,7 @@ pub fn morph(a: &Params, b: &Params, t: f32) -> Result<Params> {
     let mut out = a.clone();
     out.source = None;
     out.transform.scale = (a.transform.scale.ln() * (1.0 - t) + b.transform.scale.ln() * t).exp();
-    let mut dr = (b.transform.rotation_deg - a.transform.rotation_deg).rem_euclid(360.0);
-    if dr > 180.0 {
-        dr -= 360.0;
-    }
+    let dr = shorter_turn(a.transform.rotation_deg, b.transform.rotation_deg);
     out.transform.rotation_deg = a.transform.rotation_deg + t * dr;
     for c in 0..3 {
         out.colour.mean[c] = lerp(a.colour.mean[c], b.colour.mean[c], t).clamp(0.0, 1.0);

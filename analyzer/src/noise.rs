@@ -293,6 +293,63 @@ pub fn noise3(tile: &[f32], n: usize, p: [f32; 3]) -> f32 {
     sum
 }
 
+/// Side of the 3D tile (twin of `tile3_side` in `shaders/tile3.wgsl` and `tile3_atlas.wgsl`).
+#[inline]
+pub fn tile3_side(tile: &Tile) -> usize {
+    tile.n
+}
+
+/// Coefficient `c` of a 3D tile of side `n` (twin of `tile3_texel` in `shaders/tile3.wgsl`
+/// and `tile3_atlas.wgsl`; [`noise3`] inlines this indexing with precomputed row offsets).
+#[inline]
+pub fn tile3_texel(tile: &[f32], n: usize, c: [usize; 3]) -> f32 {
+    tile[c[0] + n * (c[1] + n * c[2])]
+}
+
+/// Slices per row of a slice atlas (`ATLAS_COLUMNS` in `shaders/atlas3.wgsl`).
+pub const ATLAS_COLUMNS: usize = 8;
+
+/// The atlas texel of voxel `c` of a volume whose slices are `size` texels (twin of
+/// `atlas_texel` in `shaders/atlas3.wgsl`): slice z at column z % 8, row z / 8.
+#[inline]
+pub fn atlas_texel(c: [usize; 3], size: [usize; 2]) -> [usize; 2] {
+    [
+        c[0] + size[0] * (c[2] % ATLAS_COLUMNS),
+        c[1] + size[1] * (c[2] / ATLAS_COLUMNS),
+    ]
+}
+
+/// The voxel at atlas texel `t` (twin of `atlas_voxel` in `shaders/atlas3.wgsl`).
+#[inline]
+pub fn atlas_voxel(t: [usize; 2], size: [usize; 2]) -> [usize; 3] {
+    let (col, row) = (t[0] / size[0], t[1] / size[1]);
+    [
+        t[0] - col * size[0],
+        t[1] - row * size[1],
+        col + ATLAS_COLUMNS * row,
+    ]
+}
+
+impl Tile {
+    /// A 3D tile as the slice atlas that exported solid textures bake (`8n × n²/8`, row-major):
+    /// what `fs_bake3_tile` must produce.
+    pub fn atlas(&self) -> (usize, usize, Vec<f32>) {
+        assert_eq!(self.dims, 3, "only 3D tiles have an atlas");
+        let n = self.n;
+        let (w, h) = (n * ATLAS_COLUMNS, n * n / ATLAS_COLUMNS);
+        let mut out = vec![0.0; w * h];
+        for z in 0..n {
+            for y in 0..n {
+                for x in 0..n {
+                    let [u, v] = atlas_texel([x, y, z], [n, n]);
+                    out[u + w * v] = tile3_texel(&self.data, n, [x, y, z]);
+                }
+            }
+        }
+        (w, h, out)
+    }
+}
+
 /// Band clamping (Norton et al. 1982): the factor of band `j` (energy up to `2^−(j+1)` cycles per
 /// texel) when one pixel covers `2^log2_footprint` texels. 1 while the band is below the pixel
 /// Nyquist rate, fading linearly (in octaves) to 0 when it lies an octave above it.
@@ -304,6 +361,26 @@ pub fn band_fade(band: u32, log2_footprint: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn atlas_texel_and_voxel_are_inverse() {
+        for size in [[32, 64], [64, 32], [64, 64]] {
+            let depth = 64;
+            let (w, h) = (size[0] * ATLAS_COLUMNS, size[1] * depth / ATLAS_COLUMNS);
+            let mut seen = vec![false; w * h];
+            for z in 0..depth {
+                for y in 0..size[1] {
+                    for x in 0..size[0] {
+                        let t = atlas_texel([x, y, z], size);
+                        assert!(t[0] < w && t[1] < h);
+                        assert!(!seen[t[0] + w * t[1]], "two voxels on one texel");
+                        seen[t[0] + w * t[1]] = true;
+                        assert_eq!(atlas_voxel(t, size), [x, y, z]);
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn filters_are_as_documented() {

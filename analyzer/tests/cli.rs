@@ -219,6 +219,23 @@ fn export_prints_json_wgsl_and_glsl() {
         Some(2)
     );
     assert_eq!(proctex(&["export", &params]).status.code(), Some(2));
+    // Two files: the morph between them with t as a uniform; json takes one file.
+    let other = tmp("export-other.json");
+    let o = proctex(&["analyze", &sample("stk_wood_planks1_256.png"), "-o", &other]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (format, want) in [
+        ("wgsl", "var<uniform> proctex_t"),
+        ("glsl", "uniform float proctex_t;"),
+    ] {
+        let o = proctex(&["export", &params, &other, "--format", format]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(
+            String::from_utf8_lossy(&o.stdout).contains(want),
+            "{format}"
+        );
+    }
+    let o = proctex(&["export", &params, &other, "--format", "json"]);
+    assert_eq!(o.status.code(), Some(2));
     // A tile size out of range is a clear error, not a panic.
     let o = proctex(&[
         "render",

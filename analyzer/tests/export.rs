@@ -1,48 +1,71 @@
-//! Exported shaders, for every shipped sample: the WGSL validates with naga, the GLSL compiles
-//! with glslang (each of its five stages, GLSL ES 3.00 and desktop 330).
+//! Exported shaders, for every shipped sample as a plane texture and as a solid one: the WGSL
+//! validates with naga, the GLSL compiles with glslang (each of its stages, GLSL ES 3.00 and
+//! desktop 330).
 
 mod common;
 
 use common::{SAMPLES, sample};
 use proctex::analyze::{Options, analyze_photo};
 
-#[test]
-fn exported_wgsl_validates_with_naga() {
+/// Every sample's params, plane and solid.
+fn every_texture() -> Vec<(String, proctex::params::Params)> {
+    let mut out = Vec::new();
     for name in SAMPLES {
         let params = analyze_photo(&sample(name), &Options::default())
             .unwrap()
             .params;
+        let mut solid = params.clone();
+        solid.solid = true;
+        out.push((name.to_string(), params));
+        out.push((format!("{name}-solid"), solid));
+    }
+    out
+}
+
+/// Parses and validates a WGSL shader with naga; panics with the message.
+fn naga_validate(name: &str, src: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(src)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(src)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+    module
+}
+
+#[test]
+fn exported_wgsl_validates_with_naga() {
+    for (name, params) in every_texture() {
         let src = proctex::export::wgsl(&params).unwrap();
-        let module = naga::front::wgsl::parse_str(&src)
-            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&src)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::default(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        let module = naga_validate(&name, &src);
         let entries: Vec<&str> = module
             .entry_points
             .iter()
             .map(|e| e.name.as_str())
             .collect();
-        for want in [
-            "vs_main",
-            "fs_main",
-            "vs_bake",
-            "fs_bake_down_x",
-            "fs_bake_down_y",
-            "fs_bake_tile",
-        ] {
-            assert!(entries.contains(&want), "{name}: no {want}");
+        let passes: &[&str] = if params.solid {
+            &[
+                "fs_bake3_down_x",
+                "fs_bake3_down_y",
+                "fs_bake3_down_z",
+                "fs_bake3_tile",
+            ]
+        } else {
+            &["fs_bake_down_x", "fs_bake_down_y", "fs_bake_tile"]
+        };
+        for want in ["vs_main", "fs_main", "vs_bake"].iter().chain(passes) {
+            assert!(entries.contains(want), "{name}: no {want}");
         }
+        // Only the passes the host is told to run.
+        assert_eq!(entries.len(), 3 + passes.len(), "{name}: {entries:?}");
         assert!(src.contains("fn proctex(p: vec2<f32>, pixel_size: f32) -> vec3<f32>"));
+        assert_eq!(
+            src.contains("fn proctex3(p: vec3<f32>, pixel_size: f32) -> vec3<f32>"),
+            params.solid
+        );
     }
-    let mut solid = analyze_photo(&sample(SAMPLES[0]), &Options::default())
-        .unwrap()
-        .params;
-    solid.solid = true;
-    assert!(proctex::export::wgsl(&solid).is_err());
 }
 
 /// glslangValidator (Debian's `glslang-tools`; `scripts/test.sh` installs it).
@@ -78,10 +101,7 @@ fn compile(dir: &std::path::Path, file: &str, src: &str) {
 fn exported_glsl_compiles_with_glslang() {
     let dir = std::env::temp_dir().join(format!("proctex-glsl-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    for name in SAMPLES {
-        let params = analyze_photo(&sample(name), &Options::default())
-            .unwrap()
-            .params;
+    for (name, params) in every_texture() {
         let src = proctex::export::glsl(&params).unwrap();
         let (first, rest) = src.split_once('\n').unwrap();
         assert_eq!(
@@ -89,20 +109,25 @@ fn exported_glsl_compiles_with_glslang() {
             "{name}: the text must compile as-is"
         );
         assert!(src.contains("vec3 proctex(vec2 p, float pixel_size)"));
+        assert_eq!(
+            src.contains("vec3 proctex3(vec3 p, float pixel_size)"),
+            params.solid
+        );
         // As-is: the display fragment shader, GLSL ES 3.00.
         compile(&dir, &format!("{name}.frag"), &src);
         // Each stage by its define, in GLSL ES 3.00 and (the header's note) desktop GLSL 330.
         for (v, version) in ["#version 300 es", "#version 330 core"].iter().enumerate() {
-            for (d, (define, ext)) in [
+            let mut stages = vec![
                 ("// display", "frag"),
                 ("#define PROCTEX_VERTEX", "vert"),
                 ("#define PROCTEX_PASS 1", "frag"),
                 ("#define PROCTEX_PASS 2", "frag"),
                 ("#define PROCTEX_PASS 3", "frag"),
-            ]
-            .iter()
-            .enumerate()
-            {
+            ];
+            if params.solid {
+                stages.push(("#define PROCTEX_PASS 4", "frag"));
+            }
+            for (d, (define, ext)) in stages.iter().enumerate() {
                 let stage = format!("{version}\n{define}\n{rest}");
                 let file = format!("{name}-{v}{d}.{ext}");
                 compile(&dir, &file, &stage);
@@ -110,9 +135,71 @@ fn exported_glsl_compiles_with_glslang() {
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
-    let mut solid = analyze_photo(&sample(SAMPLES[0]), &Options::default())
-        .unwrap()
-        .params;
-    solid.solid = true;
-    assert!(proctex::export::glsl(&solid).is_err());
+}
+
+/// Morphs through the samples: two plane keys, three plane keys (histograms off in one), two
+/// solid keys.
+fn every_morph() -> Vec<(String, Vec<proctex::params::Params>)> {
+    let key = |i: usize| {
+        analyze_photo(&sample(SAMPLES[i]), &Options::default())
+            .unwrap()
+            .params
+    };
+    let (a, b, c) = (key(0), key(1), key(2));
+    let mut c_flat = c.clone();
+    let proctex::params::Model::Noise(m) = &mut c_flat.model;
+    m.histogram.enabled = false;
+    let solid = |p: &proctex::params::Params| {
+        let mut p = p.clone();
+        p.solid = true;
+        p
+    };
+    vec![
+        ("morph-2".into(), vec![a.clone(), b.clone()]),
+        ("morph-3".into(), vec![a.clone(), b.clone(), c_flat]),
+        ("morph-solid".into(), vec![solid(&b), solid(&c)]),
+    ]
+}
+
+#[test]
+fn exported_morphs_validate_and_compile() {
+    let dir = std::env::temp_dir().join(format!("proctex-morph-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, keys) in every_morph() {
+        let src = proctex::export::morph_wgsl(&keys).unwrap();
+        naga_validate(&name, &src);
+        assert!(src.contains("var<uniform> proctex_t: vec4<f32>"));
+        assert!(src.contains("fn proctex(p: vec2<f32>, pixel_size: f32, t: f32) -> vec3<f32>"));
+
+        let src = proctex::export::morph_glsl(&keys).unwrap();
+        assert!(src.contains("uniform float proctex_t;"));
+        let rest = src.split_once('\n').unwrap().1;
+        let mut stages = vec![
+            ("// display", "frag"),
+            ("#define PROCTEX_VERTEX", "vert"),
+            ("#define PROCTEX_PASS 1", "frag"),
+        ];
+        if keys[0].solid {
+            stages.push(("#define PROCTEX_PASS 4", "frag"));
+        }
+        for (d, (define, ext)) in stages.iter().enumerate() {
+            compile(
+                &dir,
+                &format!("{name}-{d}.{ext}"),
+                &format!("#version 300 es\n{define}\n{rest}"),
+            );
+        }
+        compile(
+            &dir,
+            &format!("{name}-330.frag"),
+            &format!("#version 330 core\n{rest}"),
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    // Plane and solid keys together: a clear error.
+    let mut keys = every_morph().remove(0).1;
+    keys[1].solid = true;
+    let err = proctex::export::morph_wgsl(&keys).unwrap_err().to_string();
+    assert!(err.contains("plane and solid"), "{err}");
+    assert!(proctex::export::morph_glsl(&keys[..1]).is_err());
 }

@@ -25,10 +25,9 @@ int wrap_index(int i, int n) {
 }
 
 #ifdef PROCTEX_SOLID
-uniform highp sampler3D proctex_tile3;
-
+// The 3D tile through tile3_side / tile3_texel (tile3_atlas.glsl).
 float wavelet_noise3(vec3 p) {
-    int ni = textureSize(proctex_tile3, 0).x;
+    int ni = tile3_side();
     float nf = float(ni);
     BWeights bx = bspline_weights(wrap_coord(p.x, nf));
     BWeights by = bspline_weights(wrap_coord(p.y, nf));
@@ -45,7 +44,7 @@ float wavelet_noise3(vec3 p) {
             int row = wrap_index(by.mid + dy - 1, ni);
             float line = 0.0;
             for (int dx = 0; dx < 3; dx++) {
-                line += bx.w[dx] * texelFetch(proctex_tile3, ivec3(cols[dx], row, slab), 0).r;
+                line += bx.w[dx] * tile3_texel(ivec3(cols[dx], row, slab));
             }
             plane += by.w[dy] * line;
         }

@@ -8,6 +8,12 @@
 
 /// Uniform block layout and bindings of the texture parameters.
 pub const PARAMS: &str = include_str!("../params.wgsl");
+/// The 3D tile as the app binds it (a 3D texture): `tile3_side`, `tile3_texel`.
+pub const TILE3: &str = include_str!("../tile3.wgsl");
+/// The 3D tile of exported solid textures (a 2D atlas of slices): `tile3_side`, `tile3_texel`.
+pub const TILE3_ATLAS: &str = include_str!("../tile3_atlas.wgsl");
+/// A volume as a 2D atlas of its slices (`atlas_texel`, `atlas_voxel`).
+pub const ATLAS3: &str = include_str!("../atlas3.wgsl");
 /// Wavelet noise evaluation and band clamping.
 pub const NOISE: &str = include_str!("../noise.wgsl");
 /// Histogram matching.
@@ -19,9 +25,30 @@ pub const PLANE: &str = include_str!("../plane.wgsl");
 /// The solid view: sphere or cube of the 3D texture, orbit camera.
 pub const SOLID: &str = include_str!("../solid.wgsl");
 
-/// The library every view shader starts with: params, noise, histogram, texture.
+/// Morphing with t as a uniform (exported morphs): the params of `t` from every key's constants.
+pub const MORPH: &str = include_str!("../morph.wgsl");
+
+/// The uniform declaration of `params` in [`PARAMS`].
+const PARAMS_UNIFORM: &str = "@group(0) @binding(0) var<uniform> params: Params;";
+
+/// [`PARAMS`] with the uniform `params` made a module-scope private variable (exported
+/// snippets): initialised with `init` (a `Params` value), or left for the shader to assign
+/// (morphs assign the params of `t` per invocation).
+pub fn params_private(init: Option<&str>) -> String {
+    let decl = match init {
+        Some(v) => format!("var<private> params: Params = {v};"),
+        None => "var<private> params: Params;".to_string(),
+    };
+    assert!(
+        PARAMS.contains(PARAMS_UNIFORM),
+        "params.wgsl declares the uniform"
+    );
+    PARAMS.replace(PARAMS_UNIFORM, &decl)
+}
+
+/// The library every view shader starts with: params, the 3D tile, noise, histogram, texture.
 pub fn texture_library() -> String {
-    [PARAMS, NOISE, HISTOGRAM, TEXTURE].join("\n")
+    [PARAMS, TILE3, NOISE, HISTOGRAM, TEXTURE].join("\n")
 }
 
 /// The 2D plane view shader (entry points `vs_main`, `fs_main`).
@@ -37,8 +64,13 @@ pub fn seamless_shader() -> String {
     [texture_library().as_str(), SEAMLESS].join("\n")
 }
 
-/// Baking the noise tile from the seed on the GPU (exported snippets).
+/// Baking noise tiles from the seed on the GPU (exported snippets): what the 2D and 3D bakes
+/// share.
 pub const BAKE: &str = include_str!("../bake.wgsl");
+/// The 2D tile's bake passes (`fs_bake_down_x`, `fs_bake_down_y`, `fs_bake_tile`).
+pub const BAKE2: &str = include_str!("../bake2.wgsl");
+/// The 3D tile's bake passes into slice atlases (`fs_bake3_down_x|y|z`, `fs_bake3_tile`).
+pub const BAKE3: &str = include_str!("../bake3.wgsl");
 
 /// The constants `bake.wgsl` needs: tile side, hash seed and stream, the odd shift of the
 /// even/odd fix, and the CPU-measured normalisation (`noise::Tile::stats`).
@@ -52,10 +84,31 @@ pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: f64, inv_sd: f64) ->
     )
 }
 
-/// The tile-baking shader for the given constants (entry points `vs_bake`, `fs_bake_down_x`,
-/// `fs_bake_down_y`, `fs_bake_tile`).
+/// The 2D tile-baking shader for the given constants (entry points `vs_bake`,
+/// `fs_bake_down_x`, `fs_bake_down_y`, `fs_bake_tile`).
 pub fn bake_shader(constants: &str) -> String {
-    [constants, BAKE].join("\n")
+    [constants, BAKE, BAKE2].join("\n")
+}
+
+/// The 3D tile-baking shader for the given constants (entry points `vs_bake`,
+/// `fs_bake3_down_x`, `fs_bake3_down_y`, `fs_bake3_down_z`, `fs_bake3_tile`), every volume a
+/// slice atlas ([`ATLAS3`]).
+pub fn bake3_shader(constants: &str) -> String {
+    [constants, BAKE, ATLAS3, BAKE3].join("\n")
+}
+
+/// The plane view reading the 3D tile from a baked atlas, as exported solid textures do.
+pub fn plane_atlas_shader() -> String {
+    [
+        PARAMS,
+        ATLAS3,
+        TILE3_ATLAS,
+        NOISE,
+        HISTOGRAM,
+        TEXTURE,
+        PLANE,
+    ]
+    .join("\n")
 }
 
 /// The solid view shader (entry points `vs_solid`, `fs_solid`).
@@ -69,22 +122,39 @@ pub fn solid_shader() -> String {
 pub mod glsl {
     /// `struct Params` (the export defines `params` as a constant of it).
     pub const PARAMS: &str = include_str!("../glsl/params.glsl");
-    /// Wavelet noise (`noise2`, or `noise3` under `PROCTEX_SOLID`) and band clamping.
+    /// Wavelet noise (`noise2`, or `noise3` under `PROCTEX_SOLID`, reading [`TILE3_ATLAS`])
+    /// and band clamping.
     pub const NOISE: &str = include_str!("../glsl/noise.glsl");
     /// Histogram matching.
     pub const HISTOGRAM: &str = include_str!("../glsl/histogram.glsl");
     /// The texture at a point (`shade`).
     pub const TEXTURE: &str = include_str!("../glsl/texture.glsl");
-    /// The tile bake passes (`PROCTEX_PASS` 1, 2, 3).
+    /// What the tile bakes share (hashes, Gaussian values, filters).
     pub const BAKE: &str = include_str!("../glsl/bake.glsl");
+    /// The 2D tile's bake passes (`PROCTEX_PASS` 1, 2, 3).
+    pub const BAKE2: &str = include_str!("../glsl/bake2.glsl");
+    /// The 3D tile's bake passes into slice atlases (`PROCTEX_PASS` 1, 2, 3, 4).
+    pub const BAKE3: &str = include_str!("../glsl/bake3.glsl");
+    /// A volume as a 2D atlas of its slices.
+    pub const ATLAS3: &str = include_str!("../glsl/atlas3.glsl");
+    /// The 3D tile of exported solid textures (`tile3_side`, `tile3_texel` on an atlas).
+    pub const TILE3_ATLAS: &str = include_str!("../glsl/tile3_atlas.glsl");
+
+    /// Morphing with t as a uniform (exported morphs).
+    pub const MORPH: &str = include_str!("../glsl/morph.glsl");
 
     /// Every GLSL file: (name, source, its WGSL twin).
-    pub const FILES: [(&str, &str, &str); 5] = [
+    pub const FILES: [(&str, &str, &str); 10] = [
+        ("morph.glsl", MORPH, super::MORPH),
         ("params.glsl", PARAMS, super::PARAMS),
         ("noise.glsl", NOISE, super::NOISE),
         ("histogram.glsl", HISTOGRAM, super::HISTOGRAM),
         ("texture.glsl", TEXTURE, super::TEXTURE),
         ("bake.glsl", BAKE, super::BAKE),
+        ("bake2.glsl", BAKE2, super::BAKE2),
+        ("bake3.glsl", BAKE3, super::BAKE3),
+        ("atlas3.glsl", ATLAS3, super::ATLAS3),
+        ("tile3_atlas.glsl", TILE3_ATLAS, super::TILE3_ATLAS),
     ];
 
     /// [`super::bake_constants`] in GLSL.
@@ -111,8 +181,14 @@ fn odd_offset(n: u32) -> u32 {
 }
 
 /// Every WGSL file: (name, source).
-pub const FILES: [(&str, &str); 8] = [
+pub const FILES: [(&str, &str); 14] = [
     ("params.wgsl", PARAMS),
+    ("morph.wgsl", MORPH),
+    ("tile3.wgsl", TILE3),
+    ("tile3_atlas.wgsl", TILE3_ATLAS),
+    ("atlas3.wgsl", ATLAS3),
+    ("bake2.wgsl", BAKE2),
+    ("bake3.wgsl", BAKE3),
     ("noise.wgsl", NOISE),
     ("histogram.wgsl", HISTOGRAM),
     ("texture.wgsl", TEXTURE),
@@ -131,6 +207,29 @@ pub fn shaders() -> Vec<(&'static str, String)> {
         (
             "bake",
             bake_shader(&bake_constants(128, 1, 0x7431_3244, 0.01, 1.9)),
+        ),
+        (
+            "bake3",
+            bake3_shader(&bake_constants(64, 1, 0x7433_3344, 0.01, 1.9)),
+        ),
+        ("plane_atlas", plane_atlas_shader()),
+        (
+            "morph",
+            [
+                params_private(None).as_str(),
+                "const MORPH_SEGMENT_COUNT: u32 = 1u;\n\
+                 const MORPH_SEGMENTS = array<MorphSegment, 1>(MorphSegment());\n\
+                 const MORPH_ENDS = array<Params, 2>(Params(), Params());\n\
+                 const MORPH_OFFSETS = array<vec4<f32>, 36>();",
+                MORPH,
+                ATLAS3,
+                TILE3_ATLAS,
+                NOISE,
+                HISTOGRAM,
+                TEXTURE,
+                PLANE,
+            ]
+            .join("\n"),
         ),
     ]
 }

@@ -2,7 +2,16 @@
 
 /// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
 /// the same name, except for the ones listed in `RENAMED`.
-const TWIN_FILES: [(&str, &[&str]); 7] = [
+const TWIN_FILES: [(&str, &[&str]); 13] = [
+    (
+        "morph.wgsl",
+        &["analyzer/src/morph.rs", "analyzer/src/histogram.rs"],
+    ),
+    ("tile3.wgsl", &["analyzer/src/noise.rs"]),
+    ("tile3_atlas.wgsl", &["analyzer/src/noise.rs"]),
+    ("atlas3.wgsl", &["analyzer/src/noise.rs"]),
+    ("bake2.wgsl", &["analyzer/src/noise.rs"]),
+    ("bake3.wgsl", &["analyzer/src/noise.rs"]),
     ("noise.wgsl", &["analyzer/src/noise.rs"]),
     ("histogram.wgsl", &["analyzer/src/histogram.rs"]),
     ("texture.wgsl", &["analyzer/src/render.rs"]),
@@ -17,7 +26,10 @@ const TWIN_FILES: [(&str, &[&str]); 7] = [
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 14] = [
+const RENAMED: [(&str, &str); 23] = [
+    // `uniform` would shadow the address space of `var<uniform>` (exported morphs have one).
+    ("uniform01", "uniform"),
+    ("morph_params", "morph_path"),
     ("vs_main", "render_prepared"),
     ("fs_main", "render_prepared"),
     ("fs_flat", "render_flat"),
@@ -34,6 +46,14 @@ const RENAMED: [(&str, &str); 14] = [
     ("r_value", "generate"),
     ("band", "generate"),
     ("wrap_mod", "shift_index"),
+    // The same for the 3D tile's passes (bake3.wgsl).
+    ("fs_bake3_down_x", "generate"),
+    ("fs_bake3_down_y", "generate"),
+    ("fs_bake3_down_z", "generate"),
+    ("fs_bake3_tile", "generate"),
+    ("r_value3", "generate"),
+    ("band3", "generate"),
+    ("upsample3", "upsample"),
 ];
 
 fn wgsl_functions(src: &str) -> Vec<String> {
@@ -78,12 +98,12 @@ fn every_wgsl_function_has_a_rust_twin() {
 }
 
 /// GLSL function → WGSL twin, where the names differ (GLSL reserves the WGSL name, or the
-/// GLSL `main` of the bake passes is the three WGSL entry points).
+/// GLSL `main` of the bake passes is the WGSL entry points).
 const GLSL_RENAMED: [(&str, &str); 4] = [
-    ("uniform01", "uniform"),
     ("wavelet_noise2", "noise2"),
     ("wavelet_noise3", "noise3"),
     ("main", "fs_bake_tile"),
+    ("main", "fs_bake3_tile"),
 ];
 
 fn glsl_functions(src: &str) -> Vec<String> {
@@ -104,14 +124,18 @@ fn every_glsl_function_has_a_wgsl_twin() {
     for (file, glsl, wgsl) in proctex_shaders::glsl::FILES {
         let wgsl_fns = wgsl_functions(wgsl);
         for f in glsl_functions(glsl) {
-            let twin = GLSL_RENAMED
+            let mut twins: Vec<&str> = GLSL_RENAMED
                 .iter()
-                .find(|(g, _)| *g == f)
+                .filter(|(g, _)| *g == f)
                 .map(|(_, w)| *w)
-                .unwrap_or(&f);
+                .collect();
+            if twins.is_empty() {
+                twins.push(&f);
+            }
             assert!(
-                wgsl_fns.iter().any(|w| w == twin),
-                "GLSL `{f}` in glsl/{file} has no WGSL twin `fn {twin}`"
+                wgsl_fns.iter().any(|w| twins.contains(&w.as_str())),
+                "GLSL `{f}` in glsl/{file} has no WGSL twin `fn {}`",
+                twins.join("` or `fn ")
             );
             checked += 1;
         }

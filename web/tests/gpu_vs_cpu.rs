@@ -462,35 +462,97 @@ fn tile_baked_on_the_gpu_equals_the_cpu_tile() {
 }
 
 #[test]
+fn tile3_baked_on_the_gpu_equals_the_cpu_tile() {
+    let gpu = gpu();
+    let seed = 5u32;
+    let tile = proctex::noise::Tile::new_3d(seed);
+    let n = tile.n as u32;
+    let consts = proctex_shaders::bake_constants(
+        n,
+        seed,
+        proctex::rng::stream::TILE_3D,
+        tile.stats.raw_mean,
+        1.0 / tile.stats.raw_variance.sqrt(),
+    );
+    let module = gpu
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("bake3"),
+            source: wgpu::ShaderSource::Wgsl(proctex_shaders::bake3_shader(&consts).into()),
+        });
+    let baked = bake3(&gpu, &module, n);
+    let (w, h, want) = tile.atlas();
+    let got = read_r32(&gpu, &baked, w as u32, h as u32);
+    let max = got
+        .iter()
+        .zip(&want)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    println!(
+        "3D tile of seed {seed} baked as a {w}×{h} atlas on {}: max |GPU − CPU| = {max:.2e}",
+        gpu.adapter_name
+    );
+    assert!(max < 1e-3, "max {max}");
+}
+
+/// The four passes of the 3D tile bake (the exported solid snippet's host steps).
+fn bake3(gpu: &Gpu, module: &wgpu::ShaderModule, n: u32) -> wgpu::Texture {
+    let a = bake_pass(gpu, module, "fs_bake3_down_x", None, 4 * n, n * n / 8);
+    let b = bake_pass(gpu, module, "fs_bake3_down_y", Some(&a), 8 * n, n * n / 16);
+    let c = bake_pass(gpu, module, "fs_bake3_down_z", Some(&b), 8 * n, n * n / 16);
+    bake_pass(gpu, module, "fs_bake3_tile", Some(&c), 8 * n, n * n / 8)
+}
+
+#[test]
 fn exported_wgsl_renders_the_cpu_image() {
     let gpu = gpu();
-    let params = sample_params("skimage_gravel_512.png");
-    let src = proctex::export::wgsl(&params).unwrap();
+    let plane = sample_params("skimage_gravel_512.png");
+    let mut solid = sample_params("stk_rock_mountain_512.png");
+    solid.solid = true;
+    for (name, params) in [("gravel", plane), ("rock, solid", solid)] {
+        let src = proctex::export::wgsl(&params).unwrap();
+        exported_wgsl_matches_cpu(&gpu, name, &src, &params, None);
+    }
+}
+
+/// The exported morph with t as a uniform equals the CPU's morph (`morph_path`) along t.
+#[test]
+fn exported_morph_renders_the_cpu_morph() {
+    let gpu = gpu();
+    let gravel = sample_params("skimage_gravel_512.png");
+    let rock = sample_params("stk_rock_mountain_512.png");
+    let mut wood = sample_params("stk_wood_planks1_256.png");
+    wood.transform.rotation_deg = 300.0;
+    let keys = vec![gravel, rock, wood];
+    let src = proctex::export::morph_wgsl(&keys).unwrap();
+    for t in [0.0f32, 0.2, 0.5, 0.75, 0.9, 1.0] {
+        let params = proctex::morph::morph_path(&keys, t).unwrap();
+        exported_wgsl_matches_cpu(
+            &gpu,
+            &format!("morph of 3, t = {t}"),
+            &src,
+            &params,
+            Some(t),
+        );
+    }
+}
+
+fn exported_wgsl_matches_cpu(gpu: &Gpu, name: &str, src: &str, params: &Params, t: Option<f32>) {
     let module = gpu
         .device
         .create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("exported"),
-            source: wgpu::ShaderSource::Wgsl(src.into()),
+            source: wgpu::ShaderSource::Wgsl(src.to_string().into()),
         });
-    let n = proctex::noise::TILE_2D as u32;
     // The host steps of the snippet's header comment.
-    let a = bake_pass(&gpu, &module, "fs_bake_down_x", None, n / 2, n);
-    let b = bake_pass(&gpu, &module, "fs_bake_down_y", Some(&a), n, n / 2);
-    let tile = bake_pass(&gpu, &module, "fs_bake_tile", Some(&b), n, n);
-    let dummy = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("tile3 stand-in"),
-        size: wgpu::Extent3d {
-            width: 1,
-            height: 1,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D3,
-        format: wgpu::TextureFormat::R32Float,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[],
-    });
+    let tile = if params.solid {
+        bake3(gpu, &module, proctex::noise::TILE_3D as u32)
+    } else {
+        let n = proctex::noise::TILE_2D as u32;
+        let a = bake_pass(gpu, &module, "fs_bake_down_x", None, n / 2, n);
+        let b = bake_pass(gpu, &module, "fs_bake_down_y", Some(&a), n, n / 2);
+        bake_pass(gpu, &module, "fs_bake_tile", Some(&b), n, n)
+    };
     let (w, h) = (256u32, 192u32);
     let format = wgpu::TextureFormat::Rgba8Unorm;
     let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
@@ -535,9 +597,21 @@ fn exported_wgsl_renders_the_cpu_image() {
             cache: None,
         });
     let tile_view = tile.create_view(&wgpu::TextureViewDescriptor::default());
-    let dummy_view = dummy.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D3),
-        ..Default::default()
+    // The morph's t: a 16-byte uniform buffer at binding 3, t in its first f32.
+    let t_buffer = t.map(|t| {
+        use wgpu::util::DeviceExt;
+        let mut bytes = [0u8; 16];
+        bytes[..4].copy_from_slice(&t.to_le_bytes());
+        gpu.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("proctex_t"),
+                contents: &bytes,
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+    });
+    let t_entry = t_buffer.as_ref().map(|b| wgpu::BindGroupEntry {
+        binding: 3,
+        resource: b.as_entire_binding(),
     });
     let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
@@ -549,9 +623,12 @@ fn exported_wgsl_renders_the_cpu_image() {
             },
             wgpu::BindGroupEntry {
                 binding: 2,
-                resource: wgpu::BindingResource::TextureView(&dummy_view),
+                resource: wgpu::BindingResource::TextureView(&tile_view),
             },
-        ],
+        ]
+        .into_iter()
+        .chain(t_entry)
+        .collect::<Vec<_>>(),
     });
     let row = (w * 4).div_ceil(256) * 256;
     let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -613,7 +690,7 @@ fn exported_wgsl_renders_the_cpu_image() {
         .poll(wgpu::PollType::wait_indefinitely())
         .expect("poll");
     let data = slice.get_mapped_range().expect("mapped");
-    let cpu = render(&params, w, h, &View::default()).to_rgb8();
+    let cpu = render(params, w, h, &View::default()).to_rgb8();
     let mut sum = 0.0f64;
     let mut max = 0u8;
     for y in 0..h {
@@ -629,10 +706,10 @@ fn exported_wgsl_renders_the_cpu_image() {
     }
     let mae = sum / (w * h * 3) as f64;
     println!(
-        "exported WGSL (tile baked on the GPU) vs CPU, gravel {w}×{h} on {}: mean {mae:.4}/255, max {max}/255",
+        "exported WGSL (tile baked on the GPU) vs CPU, {name} {w}×{h} on {}: mean {mae:.4}/255, max {max}/255",
         gpu.adapter_name
     );
-    assert!(mae <= 0.25 && max <= 3, "mean {mae}, max {max}");
+    assert!(mae <= 0.25 && max <= 3, "{name}: mean {mae}, max {max}");
 }
 
 /// The PNG tile export: the seamless tile rendered in strips by `shaders/seamless.wgsl`

@@ -26,7 +26,7 @@ COMMANDS:
     evaluate  texture distances between two images
     fidelity  synthesis-vs-photo distance ratios (the README's fidelity table)
     morph     params JSON files → the texture a fraction t of the way through them
-    export    params JSON → params JSON or a complete WGSL or GLSL shader of the texture
+    export    params JSON → params JSON, or a complete WGSL or GLSL shader of the texture or a morph
     help      this text; `proctex <COMMAND> --help` for a command
 
 Exit codes: 0 success, 1 bad input or failed operation, 2 bad usage.";
@@ -98,13 +98,17 @@ slerp) and the scale (geometric); t in [0, 1] is spread evenly over the segments
 noise uses A's seed. Prints the params JSON (or writes OUT.json).";
 
 const EXPORT_HELP: &str = "\
-proctex export PARAMS.json --format json|wgsl|glsl [-o OUT]
+proctex export PARAMS.json [MORE.json...] --format json|wgsl|glsl [-o OUT]
 
-json: the validated params document. wgsl: a complete WGSL shader (plane textures): the
-function proctex(p, pixel_size) with the params baked in, three passes that bake the noise
-tile from the seed, and a full-screen vs_main/fs_main; its header comment says how to host it.
+json: the validated params document. wgsl: a complete WGSL shader: the function
+proctex(p, pixel_size) with the params baked in (and proctex3(p, pixel_size) for solid
+textures), the passes that bake the noise tile from the seed (three; four into a slice atlas
+for solid textures), and a full-screen vs_main/fs_main; its header comment says how to host it.
 glsl: the same as GLSL ES 3.00 (WebGL2; desktop GLSL 330 by changing the #version line): the
-display fragment shader as-is, and the vertex shader and bake passes by one #define each.";
+display fragment shader as-is, and the vertex shader and bake passes by one #define each.
+
+Two or more params files (wgsl, glsl): the morph through them, as `proctex morph`, with t as a
+uniform: proctex(p, pixel_size, t) rebuilds the params of t from every file's constants.";
 
 /// Minimal argument cursor: positional arguments and `--flag [value]` options.
 struct Args {
@@ -227,7 +231,7 @@ fn read_params(path: &str) -> Result<Params> {
 }
 
 fn cmd_export(mut a: Args) -> Result<()> {
-    let (mut file, mut format, mut out) = (None, None, None);
+    let (mut files, mut format, mut out) = (Vec::new(), None, None);
     while let Some(arg) = a.next() {
         match arg.as_str() {
             "-h" | "--help" => {
@@ -237,22 +241,33 @@ fn cmd_export(mut a: Args) -> Result<()> {
             "--format" => format = Some(a.value(&arg)?),
             "-o" | "--output" => out = Some(a.value(&arg)?),
             f if f.starts_with('-') => return Err(usage(format!("export: unknown option {f}"))),
-            _ if file.is_none() => file = Some(arg),
-            _ => return Err(usage(format!("export: unexpected argument `{arg}`"))),
+            _ => files.push(arg),
         }
     }
-    let file = file.ok_or_else(|| usage("export: which params file? (proctex export PARAMS)"))?;
+    if files.is_empty() {
+        return Err(usage("export: which params file? (proctex export PARAMS)"));
+    }
     let format = format.ok_or_else(|| usage("export: --format json|wgsl|glsl is required"))?;
-    let params = read_params(&file)?;
-    let text = match format.as_str() {
-        "json" => params.to_json(),
-        "wgsl" => proctex::export::wgsl(&params)?,
-        "glsl" => proctex::export::glsl(&params)?,
-        f => {
-            return Err(usage(format!(
-                "export: unknown format `{f}` (json, wgsl or glsl)"
-            )));
-        }
+    if !["json", "wgsl", "glsl"].contains(&format.as_str()) {
+        return Err(usage(format!(
+            "export: unknown format `{format}` (json, wgsl or glsl)"
+        )));
+    }
+    if format == "json" && files.len() > 1 {
+        return Err(usage(
+            "export: --format json takes one params file (a morph exports as wgsl or glsl)",
+        ));
+    }
+    let keys = files
+        .iter()
+        .map(|f| read_params(f))
+        .collect::<Result<Vec<_>>>()?;
+    let text = match (format.as_str(), keys.as_slice()) {
+        ("json", [p]) => p.to_json(),
+        ("wgsl", [p]) => proctex::export::wgsl(p)?,
+        ("glsl", [p]) => proctex::export::glsl(p)?,
+        ("wgsl", _) => proctex::export::morph_wgsl(&keys)?,
+        _ => proctex::export::morph_glsl(&keys)?,
     };
     match out {
         Some(path) => std::fs::write(&path, &text).map_err(|e| Error::Io {

@@ -1,0 +1,130 @@
+// Morphing between textures with t as a uniform (GLSL twin of shaders/morph.wgsl; Rust twins in
+// analyzer/src/morph.rs and analyzer/src/histogram.rs). Same operation order, 32-bit floats.
+// Generated constants: MORPH_SEGMENT_COUNT, MORPH_SEGMENTS, MORPH_ENDS, MORPH_OFFSETS.
+
+struct MorphKey {
+    vec4 mean;          // mean RGB, contrast
+    vec4 quat;          // the colour basis as a unit quaternion (w, x, y, z)
+    vec4 pose;          // ln(scale), rotation (degrees), turn to the other end (degrees)
+    vec4 weights[12];   // [band] -> weight of channels 0, 1, 2
+    vec4 knots[33];     // [knot] -> inverse-CDF knot of channels 0, 1, 2 (segment's count)
+};
+
+struct MorphSegment {
+    MorphKey a;
+    MorphKey b;
+    uvec4 counts;       // bands, knots, solid (0/1), histogram (0/1) of the blend
+};
+
+// (generated constants)
+
+vec4 slerp(vec4 a, vec4 b_in, float t) {
+    float d = dot(a, b_in);
+    vec4 b = b_in;
+    if (d < 0.0) {
+        d = -d;
+        b = -b_in;
+    }
+    if (d > 0.9995) {
+        return normalize(a + t * (b - a));
+    }
+    float theta = acos(clamp(d, -1.0, 1.0));
+    float sa = sin((1.0 - t) * theta) / sin(theta);
+    float sb = sin(t * theta) / sin(theta);
+    return normalize(sa * a + sb * b);
+}
+
+vec4[3] matrix_from_quat(vec4 q_in) {
+    vec4 q = normalize(q_in);
+    float w = q.x;
+    float x = q.y;
+    float y = q.z;
+    float z = q.w;
+    return vec4[3](
+        vec4(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y), 0.0),
+        vec4(2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x), 0.0),
+        vec4(2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y), 0.0));
+}
+
+vec4[33] fc_tangents(vec4 knots[33], uint count) {
+    vec4 m[33];
+    for (int k = 0; k < 33; k++) {
+        m[k] = vec4(0.0);
+    }
+    if (count < 2u) {
+        return m;
+    }
+    float h = 1.0 / float(count - 1u);
+    vec4 delta[32];
+    for (uint k = 0u; k + 1u < count; k++) {
+        delta[k] = (knots[k + 1u] - knots[k]) / h;
+    }
+    m[0] = delta[0];
+    m[count - 1u] = delta[count - 2u];
+    for (uint k = 1u; k + 1u < count; k++) {
+        bvec4 opposite = lessThanEqual(delta[k - 1u] * delta[k], vec4(0.0));
+        m[k] = mix(0.5 * (delta[k - 1u] + delta[k]), vec4(0.0), opposite);
+    }
+    for (uint k = 0u; k + 1u < count; k++) {
+        vec4 d = delta[k];
+        bvec4 level = equal(d, vec4(0.0));
+        vec4 safe = mix(d, vec4(1.0), level);
+        vec4 a = m[k] / safe;
+        vec4 b = m[k + 1u] / safe;
+        vec4 s = a * a + b * b;
+        bvec4 limit = greaterThan(s, vec4(9.0));
+        vec4 tau = 3.0 / sqrt(mix(vec4(9.0), s, limit));
+        m[k] = mix(mix(m[k], tau * a * d, limit), vec4(0.0), level);
+        m[k + 1u] = mix(mix(m[k + 1u], tau * b * d, limit), vec4(0.0), level);
+    }
+    return m;
+}
+
+Params morph(MorphSegment seg, float t) {
+    MorphKey a = seg.a;
+    MorphKey b = seg.b;
+    Params p;
+    vec4 mean = a.mean + t * (b.mean - a.mean);
+    p.mean = vec4(clamp(mean.xyz, vec3(0.0), vec3(1.0)), mean.w);
+    p.basis = matrix_from_quat(slerp(a.quat, b.quat, t));
+    float scale = exp(a.pose.x * (1.0 - t) + b.pose.x * t);
+    float angle = radians(a.pose.y + t * a.pose.z);
+    p.transform = vec4(1.0 / scale, cos(angle), sin(angle), 0.0);
+    p.counts = seg.counts;
+    vec4 energy = vec4(0.0);
+    for (int j = 0; j < MAX_BANDS; j++) {
+        vec4 w = max(a.weights[j] + t * (b.weights[j] - a.weights[j]), vec4(0.0));
+        p.weights[j] = w;
+        energy += w * w;
+    }
+    p.sigma = sqrt(energy);
+    p.offsets = MORPH_OFFSETS;
+    for (int k = 0; k < MAX_KNOTS; k++) {
+        p.knots[k] = vec4(0.0);
+    }
+    for (uint k = 0u; k < seg.counts.y; k++) {
+        vec4 v = a.knots[k] + t * (b.knots[k] - a.knots[k]);
+        if (k > 0u) {
+            // Rounding must not break monotonicity.
+            v = max(v, p.knots[k - 1u]);
+        }
+        p.knots[k] = v;
+    }
+    p.tangents = fc_tangents(p.knots, seg.counts.y);
+    return p;
+}
+
+Params morph_params(float t_in) {
+    float t = clamp(t_in, 0.0, 1.0);
+    if (t >= 1.0) {
+        return MORPH_ENDS[MORPH_SEGMENT_COUNT];
+    }
+    float segments = float(MORPH_SEGMENT_COUNT);
+    float s = max(min(t * segments, segments - 1e-6), 0.0);
+    uint i = uint(floor(s));
+    float local_t = s - float(i);
+    if (local_t == 0.0) {
+        return MORPH_ENDS[i];
+    }
+    return morph(MORPH_SEGMENTS[i], local_t);
+}
