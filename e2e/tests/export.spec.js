@@ -2,12 +2,11 @@
 // rendered by the bare host pages (www/host-wgsl.html: raw WebGPU; www/host-glsl.html: raw
 // WebGL2), and compared with the app's own view of the same world rectangle.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, grab, clickWidget } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, clickWidget, morphRockToGrass } = require('./helpers');
 
 // The app's 2D view of world [0, size)² at one world unit per pixel, and the shader the app
-// copies with its "Copy <lang>" button.
-async function appViewAndSnippet(page, lang, size) {
-  await openApp(page);
+// copies with its "Copy <lang>" button (`button`: the widget's prefix, export or morph).
+async function appViewAndSnippet(page, lang, size, button = 'export') {
   await page.evaluate(() => window.proctex.setView(0, 0, 1));
   await waitFrames(page, 3);
   const s = await state(page);
@@ -17,17 +16,17 @@ async function appViewAndSnippet(page, lang, size) {
   const frameX = Math.round(vx), frameY = Math.round(vy);
   const px = Math.ceil(vx) + 8, py = Math.ceil(vy) + 8;
   const app = await grab(page, [px, py, size, size]);
-  await clickWidget(page, `export.copy_${lang}`);
+  await clickWidget(page, `${button}.copy_${lang}`);
   const src = await page.evaluate(() => window.proctex.lastCopied);
   expect(src, 'the Copy button put a shader on the clipboard').toBeTruthy();
   expect((await state(page)).error).toBeFalsy();
   return { app, src, offset: [px - frameX, py - frameY] };
 }
 
-async function hostImage(page, hostPage, src, size, offset) {
+async function hostImage(page, hostPage, src, size, offset, t) {
   await page.goto(hostPage);
   const w = size + offset[0], h = size + offset[1];
-  const error = await page.evaluate(([s, w2, h2]) => window.host.render(s, w2, h2), [src, w, h]);
+  const error = await page.evaluate(([s, w2, h2, t2]) => window.host.render(s, w2, h2, t2), [src, w, h, t]);
   expect(error, `${hostPage} reports no error`).toBeNull();
   return grab(page, [offset[0], offset[1], size, size]);
 }
@@ -44,18 +43,68 @@ function compare(a, b) {
   return { mae: sum / (n * 3), max };
 }
 
-for (const [lang, hostPage] of [['wgsl', 'host-wgsl.html'], ['glsl', 'host-glsl.html']]) {
+// The host's image equals the app's and is the texture itself, not a blank or flat image.
+function expectSame(what, app, host) {
+  const { mae, max } = compare(app, host);
+  console.log(`${what} host vs app over ${app.width}×${app.height}: mean |diff| = ${mae.toFixed(4)}/255, max ${max}/255`);
+  let lo = 255, hi = 0;
+  for (let i = 0; i < host.data.length; i += 4) { lo = Math.min(lo, host.data[i]); hi = Math.max(hi, host.data[i]); }
+  expect(hi - lo).toBeGreaterThan(40);
+  expect(mae).toBeLessThan(1.0);
+}
+
+const HOSTS = [['wgsl', 'host-wgsl.html'], ['glsl', 'host-glsl.html']];
+
+for (const [lang, hostPage] of HOSTS) {
   test(`the exported ${lang.toUpperCase()} renders the app's view in the bare host page`, async ({ page }) => {
     const size = 192;
+    await openApp(page);
     const { app, src, offset } = await appViewAndSnippet(page, lang, size);
-    const host = await hostImage(page, hostPage, src, size, offset);
-    const { mae, max } = compare(app, host);
-    console.log(`${lang} host vs app over ${size}×${size}: mean |diff| = ${mae.toFixed(4)}/255, max ${max}/255`);
-    // Not a blank or flat image: the texture itself.
-    let lo = 255, hi = 0;
-    for (let i = 0; i < size * size * 4; i += 4) { lo = Math.min(lo, host.data[i]); hi = Math.max(hi, host.data[i]); }
-    expect(hi - lo).toBeGreaterThan(40);
-    expect(mae).toBeLessThan(1.0);
+    expectSame(lang, app, await hostImage(page, hostPage, src, size, offset));
+  });
+}
+
+for (const [lang, hostPage] of HOSTS) {
+  test(`a solid texture's exported ${lang.toUpperCase()} renders the app's plane view (z = 0)`, async ({ page }) => {
+    const size = 128;
+    await openApp(page);
+    const p = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+    p.solid = true;
+    await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(p));
+    await page.evaluate(() => window.proctex.setViewMode('plane'));
+    await waitFrames(page, 3);
+    const { app, src, offset } = await appViewAndSnippet(page, lang, size);
+    expect(src).toContain(lang === 'wgsl' ? 'fn proctex3(' : 'vec3 proctex3(');
+    expectSame(`solid ${lang}`, app, await hostImage(page, hostPage, src, size, offset));
+  });
+}
+
+// Two presets (rock and grass) ticked for a morph, t dragged to the middle with the mouse.
+async function morphHalfway(page) {
+  await openApp(page);
+  await morphRockToGrass(page);
+  const [x, y, w, h] = (await state(page)).widgets['morph.t'];
+  await page.mouse.move(x + 3, y + h / 2);
+  await page.mouse.down();
+  await page.mouse.move(x + Math.min(60, w / 3), y + h / 2, { steps: 4 });
+  await page.mouse.up();
+  await waitFrames(page, 2);
+  const t = (await state(page)).morph_t;
+  expect(t).toBeGreaterThan(0.05);
+  expect(t).toBeLessThan(0.95);
+  return t;
+}
+
+for (const [lang, hostPage] of HOSTS) {
+  test(`the exported ${lang.toUpperCase()} morph renders the app's morph at the slider's t`, async ({ page }) => {
+    const size = 128;
+    const t = await morphHalfway(page);
+    const { app, src, offset } = await appViewAndSnippet(page, lang, size, 'morph');
+    expect(src).toContain('proctex_t');
+    expectSame(`morph ${lang} at t = ${t.toFixed(3)}`, app, await hostImage(page, hostPage, src, size, offset, t));
+    // And t = 0 in the host is the first preset, not the blend.
+    const start = await hostImage(page, hostPage, src, size, offset, 0);
+    expect(compare(app, start).mae).toBeGreaterThan(2);
   });
 }
 

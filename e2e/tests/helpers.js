@@ -105,7 +105,27 @@ async function waitAnalyses(page, n) {
   await waitFrames(page, 2);
 }
 
+// In an open app: saves the rock sample and the grass sample as presets and ticks both as morph
+// keys (t = 0). Returns both params documents, parsed.
+async function morphRockToGrass(page) {
+  const rock = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  await clickWidget(page, 'preset.save');
+  const n = (await state(page)).analyses;
+  await clickWidget(page, 'sample.2'); // grass
+  await waitAnalyses(page, n + 1);
+  const grass = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  await clickWidget(page, 'preset.save');
+  await page.waitForFunction(() => window.proctex.state().presets.length === 2);
+  await clickWidget(page, 'preset.0.morph');
+  await clickWidget(page, 'preset.1.morph');
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().morph_t === 0;
+  });
+  return { rock, grass };
+}
+
 module.exports = {
   expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender,
-  innerSquare, clickWidget, waitAnalyses, ROOT,
+  innerSquare, clickWidget, waitAnalyses, morphRockToGrass, ROOT,
 };

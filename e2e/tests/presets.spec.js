@@ -1,7 +1,7 @@
 // Presets: saved with the mouse, they survive a reload; a corrupt import changes nothing; the
 // morph between two presets follows the t slider dragged with the mouse.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, clickWidget, waitAnalyses } = require('./helpers');
+const { expect, openApp, state, waitFrames, clickWidget, waitAnalyses, morphRockToGrass } = require('./helpers');
 
 const core = (p) => ({ colour: p.colour, transform: p.transform, model: p.model, seed: p.seed });
 
@@ -35,20 +35,7 @@ test('presets survive a reload and a corrupt import leaves them untouched', asyn
 
 test('morphing two presets follows the t slider', async ({ page }) => {
   await openApp(page);
-  const rock = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
-  await clickWidget(page, 'preset.save');
-  const n = (await state(page)).analyses;
-  await clickWidget(page, 'sample.2'); // grass
-  await waitAnalyses(page, n + 1);
-  const grass = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
-  await clickWidget(page, 'preset.save');
-  await page.waitForFunction(() => window.proctex.state().presets.length === 2);
-  await clickWidget(page, 'preset.0.morph');
-  await clickWidget(page, 'preset.1.morph');
-  await page.waitForFunction(() => {
-    window.proctex.requestRepaint();
-    return window.proctex.state().morph_t === 0;
-  });
+  const { rock, grass } = await morphRockToGrass(page);
   expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).toEqual(core(rock));
   // Drag the t slider's knob to the right end with the mouse.
   const [x, y, , h] = (await state(page)).widgets['morph.t'];

@@ -937,44 +937,10 @@ impl ProctexApp {
         });
         ui.horizontal(|ui| {
             ui.label("Shader:");
-            for (format, ext) in [("WGSL", "wgsl"), ("GLSL", "glsl")] {
-                let enabled = self.params.is_some();
-                let r = ui
-                    .add_enabled(enabled, egui::Button::new(format!("Copy {format}")).small())
-                    .on_hover_text(format!(
-                        "Copy a complete {format} shader of this texture (params baked in, \
-                         tile bake passes, host notes in its header) to the clipboard"
-                    ));
-                self.record(format!("export.copy_{ext}"), &r);
-                let copy = r.clicked();
-                let r = ui
-                    .add_enabled(enabled, egui::Button::new(format!("{format}…")).small())
-                    .on_hover_text(format!("Download the {format} shader"));
-                self.record(format!("export.download_{ext}"), &r);
-                let download = r.clicked();
-                if (copy || download)
-                    && let Some(p) = &self.params
-                {
-                    match export_shader(p, ext) {
-                        Ok(text) if copy => {
-                            host("copyText", &[JsValue::from_str(&text)]);
-                            self.status_note = Some(format!(
-                                "{format} shader copied to the clipboard ({} lines)",
-                                text.lines().count()
-                            ));
-                        }
-                        Ok(text) => {
-                            host(
-                                "downloadText",
-                                &[
-                                    JsValue::from_str(&format!("proctex-texture.{ext}")),
-                                    JsValue::from_str(&text),
-                                ],
-                            );
-                        }
-                        Err(e) => self.error = Some(format!("{format} export: {e}")),
-                    }
-                }
+            let clicked = self.shader_buttons(ui, "export", self.params.is_some(), "this texture");
+            if let (Some((format, ext, copy)), Some(p)) = (clicked, &self.params) {
+                let text = export_shader(p, ext);
+                self.deliver_shader(format, ext, copy, "proctex-texture", text);
             }
         });
         self.tile_row(ui);
@@ -1144,6 +1110,68 @@ impl ProctexApp {
         self.persist_presets();
     }
 
+    /// "Copy WGSL", "WGSL…", "Copy GLSL", "GLSL…" buttons (widgets `{prefix}.copy_wgsl`,
+    /// `{prefix}.download_wgsl`, ...): the clicked one as (language, extension, copy?).
+    fn shader_buttons(
+        &mut self,
+        ui: &mut egui::Ui,
+        prefix: &str,
+        enabled: bool,
+        what: &str,
+    ) -> Option<(&'static str, &'static str, bool)> {
+        let mut clicked = None;
+        for (format, ext) in [("WGSL", "wgsl"), ("GLSL", "glsl")] {
+            let r = ui
+                .add_enabled(enabled, egui::Button::new(format!("Copy {format}")).small())
+                .on_hover_text(format!(
+                    "Copy a complete {format} shader of {what} (params baked in, tile bake \
+                     passes, host notes in its header) to the clipboard"
+                ));
+            self.record(format!("{prefix}.copy_{ext}"), &r);
+            if r.clicked() {
+                clicked = Some((format, ext, true));
+            }
+            let r = ui
+                .add_enabled(enabled, egui::Button::new(format!("{format}…")).small())
+                .on_hover_text(format!("Download the {format} shader of {what}"));
+            self.record(format!("{prefix}.download_{ext}"), &r);
+            if r.clicked() {
+                clicked = Some((format, ext, false));
+            }
+        }
+        clicked
+    }
+
+    /// Puts an exported shader on the clipboard or downloads it as `{stem}.{ext}`.
+    fn deliver_shader(
+        &mut self,
+        format: &str,
+        ext: &str,
+        copy: bool,
+        stem: &str,
+        text: Result<String, String>,
+    ) {
+        match text {
+            Ok(text) if copy => {
+                host("copyText", &[JsValue::from_str(&text)]);
+                self.status_note = Some(format!(
+                    "{format} shader copied to the clipboard ({} lines)",
+                    text.lines().count()
+                ));
+            }
+            Ok(text) => {
+                host(
+                    "downloadText",
+                    &[
+                        JsValue::from_str(&format!("{stem}.{ext}")),
+                        JsValue::from_str(&text),
+                    ],
+                );
+            }
+            Err(e) => self.error = Some(format!("{format} export: {e}")),
+        }
+    }
+
     /// The morph: t slider, play/loop, duration, save as a preset.
     fn morph_controls(&mut self, ui: &mut egui::Ui) {
         // Indices, not params: no per-frame clones; keys are copied only when the ticks change.
@@ -1212,6 +1240,14 @@ impl ProctexApp {
                 self.presets.morph_from = None;
                 self.presets.playing = false;
                 self.presets.selected.iter_mut().for_each(|s| *s = false);
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("Shader, t a uniform:");
+            if let Some((format, ext, copy)) = self.shader_buttons(ui, "morph", true, "this morph")
+            {
+                let text = export_morph_shader(&keys, ext);
+                self.deliver_shader(format, ext, copy, "proctex-morph", text);
             }
         });
     }
@@ -2051,6 +2087,17 @@ fn short(v: f32) -> String {
 
 fn now_ms() -> f64 {
     js_sys::Date::now()
+}
+
+/// The complete shader of the morph through `keys` with t as a uniform, in `format`, as
+/// `proctex export KEYS... --format FORMAT` writes it.
+pub fn export_morph_shader(keys: &[Params], format: &str) -> Result<String, String> {
+    match format {
+        "wgsl" => proctex::export::morph_wgsl(keys),
+        "glsl" => proctex::export::morph_glsl(keys),
+        f => return Err(format!("unknown shader language `{f}` (wgsl or glsl)")),
+    }
+    .map_err(|e| e.to_string())
 }
 
 /// The complete shader of `params` in `format` ("wgsl" or "glsl"), as `proctex export` writes
