@@ -21,5 +21,6 @@ pub mod rng;
 pub mod seamless;
 pub mod solid;
 pub mod spectrum;
+pub mod two_tone;
 
 pub use error::{Error, Result};

@@ -1,0 +1,212 @@
+//! Two-tone colour (the 2014 two-tone parameter-retrieval paper, §3): the photo's colours as a
+//! blend of two tones along their first principal axis, and the blend weight per pixel (the
+//! *structure map*) that structured models are matched against.
+//!
+//! As the paper says: PCA of the RGB values; the extremal projections onto the first principal
+//! axis give the two tones; where that line leaves the RGB cube the tones are clipped to the
+//! cube's faces; the darker tone (Rec. 709 luminance, then R, G, B in lexicographic order when
+//! luminances tie) maps to 0 and the lighter to 1; every pixel's projection, mapped affinely,
+//! is its structure value in [0, 1]. [`TwoTone::swapped`] exchanges the tones and replaces `s`
+//! by `1 − s` (the paper searches both instead of storing swapped models).
+//!
+//! The paper's extremal pixels are one pixel each, so a single speck of dust or a specular
+//! highlight sets a tone. That is what it specifies and what this module does; whether robust
+//! percentiles match better is for the retrieval evaluation to measure, not to assume here.
+
+use crate::colour::pca;
+use crate::input::Photo;
+
+/// A photo as two tones and a structure map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TwoTone {
+    /// The tone at structure 0 (the darker) and at structure 1, RGB in [0, 1].
+    pub tones: [[f32; 3]; 2],
+    /// Width of the structure map (the photo's).
+    pub width: u32,
+    /// Height of the structure map.
+    pub height: u32,
+    /// Structure value per pixel in [0, 1], row-major.
+    pub structure: Vec<f32>,
+}
+
+/// Rec. 709 luminance.
+fn luminance(c: [f64; 3]) -> f64 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// The range of `t` for which `origin + t·dir` lies in the RGB unit cube (`origin` inside it).
+fn cube_interval(origin: [f64; 3], dir: [f64; 3]) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    for c in 0..3 {
+        if dir[c].abs() < 1e-12 {
+            continue;
+        }
+        let a = (0.0 - origin[c]) / dir[c];
+        let b = (1.0 - origin[c]) / dir[c];
+        lo = lo.max(a.min(b));
+        hi = hi.min(a.max(b));
+    }
+    (lo, hi)
+}
+
+/// The two-tone decomposition of `photo` (§3 of the two-tone paper).
+pub fn two_tone(photo: &Photo) -> TwoTone {
+    let p = pca(&photo.pixels);
+    let mean = p.mean.map(|v| v.clamp(0.0, 1.0));
+    let axis = p.basis[0];
+    let project = |c: &[f32; 3]| {
+        (0..3)
+            .map(|k| (c[k] as f64 - mean[k]) * axis[k])
+            .sum::<f64>()
+    };
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for c in &photo.pixels {
+        let t = project(c);
+        lo = lo.min(t);
+        hi = hi.max(t);
+    }
+    if !lo.is_finite() {
+        (lo, hi) = (0.0, 0.0);
+    }
+    // Projected extremes may leave the cube: clip to where the line crosses its faces.
+    let (cube_lo, cube_hi) = cube_interval(mean, axis);
+    let (lo, hi) = (lo.max(cube_lo), hi.min(cube_hi));
+    let tone = |t: f64| [0, 1, 2].map(|k| (mean[k] + t * axis[k]).clamp(0.0, 1.0));
+    let (a, b) = (tone(lo), tone(hi));
+    let a_first = match luminance(a).partial_cmp(&luminance(b)) {
+        Some(std::cmp::Ordering::Less) => true,
+        Some(std::cmp::Ordering::Greater) => false,
+        _ => a <= b,
+    };
+    let (t0, t1, c0, c1) = if a_first {
+        (lo, hi, a, b)
+    } else {
+        (hi, lo, b, a)
+    };
+    let span = t1 - t0;
+    let structure = photo
+        .pixels
+        .iter()
+        .map(|c| {
+            if span.abs() < 1e-12 {
+                0.0
+            } else {
+                ((project(c) - t0) / span).clamp(0.0, 1.0) as f32
+            }
+        })
+        .collect();
+    TwoTone {
+        tones: [c0.map(|v| v as f32), c1.map(|v| v as f32)],
+        width: photo.width,
+        height: photo.height,
+        structure,
+    }
+}
+
+impl TwoTone {
+    /// The tones exchanged and every structure value `s` replaced by `1 − s`: the same colours.
+    pub fn swapped(&self) -> TwoTone {
+        TwoTone {
+            tones: [self.tones[1], self.tones[0]],
+            width: self.width,
+            height: self.height,
+            structure: self.structure.iter().map(|s| 1.0 - s).collect(),
+        }
+    }
+
+    /// The colour of structure value `s`: `tone0 + s·(tone1 − tone0)`.
+    pub fn colour(&self, s: f32) -> [f32; 3] {
+        [0, 1, 2].map(|k| self.tones[0][k] + s * (self.tones[1][k] - self.tones[0][k]))
+    }
+
+    /// The photo as the two-tone model reproduces it: every pixel's colour on the tone line.
+    pub fn reconstruct(&self) -> Photo {
+        Photo {
+            width: self.width,
+            height: self.height,
+            pixels: self.structure.iter().map(|&s| self.colour(s)).collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn photo(pixels: Vec<[f32; 3]>) -> Photo {
+        Photo {
+            width: pixels.len() as u32,
+            height: 1,
+            pixels,
+        }
+    }
+
+    /// A deterministic structure in [0, 1] covering both ends.
+    fn blend(i: usize, n: usize) -> f32 {
+        let x = (i as f32 * 0.618_034).fract();
+        if i == 0 {
+            0.0
+        } else if i == n - 1 {
+            1.0
+        } else {
+            x
+        }
+    }
+
+    #[test]
+    fn a_true_two_tone_image_gives_back_its_tones_and_structure() {
+        let (dark, light) = ([0.30f32, 0.12, 0.08], [0.85f32, 0.70, 0.55]);
+        let n = 1000;
+        let s: Vec<f32> = (0..n).map(|i| blend(i, n)).collect();
+        let px = s
+            .iter()
+            .map(|&v| [0, 1, 2].map(|k| dark[k] + v * (light[k] - dark[k])))
+            .collect();
+        let tt = two_tone(&photo(px));
+        for k in 0..3 {
+            assert!((tt.tones[0][k] - dark[k]).abs() < 1e-4, "{:?}", tt.tones);
+            assert!((tt.tones[1][k] - light[k]).abs() < 1e-4, "{:?}", tt.tones);
+        }
+        let err = tt
+            .structure
+            .iter()
+            .zip(&s)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max);
+        assert!(err < 1e-4, "structure error {err}");
+        // Swapping keeps every colour.
+        let sw = tt.swapped();
+        for i in 0..n {
+            let (a, b) = (tt.colour(tt.structure[i]), sw.colour(sw.structure[i]));
+            assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-6));
+        }
+    }
+
+    #[test]
+    fn the_darker_tone_is_structure_zero_whatever_the_axis_sign() {
+        // Light first in the data: the order must still put the dark tone at 0.
+        let px = vec![[0.9, 0.9, 0.9], [0.1, 0.1, 0.1], [0.5, 0.5, 0.5]];
+        let tt = two_tone(&photo(px));
+        assert!(tt.tones[0][0] < tt.tones[1][0]);
+        assert!(tt.structure[0] > 0.99 && tt.structure[1] < 0.01);
+    }
+
+    #[test]
+    fn tones_stay_in_the_rgb_cube_and_flat_images_are_finite() {
+        // Saturated colours off one line: projections leave the cube, tones are clipped to it.
+        let px = vec![
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 1.0, 0.0],
+        ];
+        let tt = two_tone(&photo(px));
+        for t in tt.tones {
+            assert!(t.iter().all(|v| (0.0..=1.0).contains(v)), "{t:?}");
+        }
+        assert!(tt.structure.iter().all(|s| (0.0..=1.0).contains(s)));
+        let flat = two_tone(&photo(vec![[0.4, 0.5, 0.6]; 16]));
+        assert!(flat.structure.iter().all(|s| s.is_finite()));
+        assert!(flat.tones.iter().flatten().all(|v| v.is_finite()));
+    }
+}
