@@ -183,6 +183,21 @@ pub fn morph_glsl(keys: &[Params]) -> Result<String> {
     Ok(glsl_of(&Subject::Morph(Box::new(MorphTables::new(keys)?))))
 }
 
+/// The complete shader in `format` ("wgsl" or "glsl") of one texture (`keys` of one), or of the
+/// morph through two or more with t as a uniform: what `proctex export` and the app's Copy
+/// buttons write.
+pub fn shader(keys: &[Params], format: &str) -> Result<String> {
+    match (format, keys) {
+        ("wgsl", [p]) => wgsl(p),
+        ("glsl", [p]) => glsl(p),
+        ("wgsl", _) => morph_wgsl(keys),
+        ("glsl", _) => morph_glsl(keys),
+        (f, _) => Err(Error::Option(format!(
+            "unknown shader language `{f}` (wgsl or glsl)"
+        ))),
+    }
+}
+
 fn wgsl_of(subject: &Subject) -> String {
     let tp = subject.tile_params();
     let (n, seed, stream, mean, inv_sd) = bake_inputs(tp);

@@ -939,7 +939,7 @@ impl ProctexApp {
             ui.label("Shader:");
             let clicked = self.shader_buttons(ui, "export", self.params.is_some(), "this texture");
             if let (Some((format, ext, copy)), Some(p)) = (clicked, &self.params) {
-                let text = export_shader(p, ext);
+                let text = export_shader(std::slice::from_ref(p), ext);
                 self.deliver_shader(format, ext, copy, "proctex-texture", text);
             }
         });
@@ -1188,11 +1188,12 @@ impl ProctexApp {
             self.presets.t = 0.0;
             self.apply_morph();
         }
-        let Some(keys) = self.presets.morph.clone() else {
+        // The keys are borrowed where used (cloned only to save): no per-frame copies.
+        let Some(n_keys) = self.presets.morph.as_ref().map(Vec::len) else {
             ui.label("Tick two or more presets to morph between them.");
             return;
         };
-        ui.label(format!("Morph through {} presets (Lagae §8)", keys.len()));
+        ui.label(format!("Morph through {n_keys} presets (Lagae §8)"));
         let r = ui.add(egui::Slider::new(&mut self.presets.t, 0.0..=1.0).text("t"));
         self.record("morph.t", &r);
         if r.changed() {
@@ -1220,13 +1221,15 @@ impl ProctexApp {
         ui.horizontal(|ui| {
             let r = ui.small_button("Save morph");
             self.record("morph.save", &r);
-            if r.clicked() {
+            if r.clicked()
+                && let Some(keys) = self.presets.morph.clone()
+            {
                 let mut list = self.presets.list.clone();
                 list.push(Preset {
-                    name: format!("morph of {}", keys.len()),
+                    name: format!("morph of {n_keys}"),
                     params: keys[0].clone(),
                     morph: Some(MorphPreset {
-                        keys: keys.clone(),
+                        keys,
                         duration_s: self.presets.duration_s,
                     }),
                 });
@@ -1245,8 +1248,9 @@ impl ProctexApp {
         ui.horizontal(|ui| {
             ui.label("Shader, t a uniform:");
             if let Some((format, ext, copy)) = self.shader_buttons(ui, "morph", true, "this morph")
+                && let Some(keys) = &self.presets.morph
             {
-                let text = export_morph_shader(&keys, ext);
+                let text = export_shader(keys, ext);
                 self.deliver_shader(format, ext, copy, "proctex-morph", text);
             }
         });
@@ -2089,24 +2093,8 @@ fn now_ms() -> f64 {
     js_sys::Date::now()
 }
 
-/// The complete shader of the morph through `keys` with t as a uniform, in `format`, as
-/// `proctex export KEYS... --format FORMAT` writes it.
-pub fn export_morph_shader(keys: &[Params], format: &str) -> Result<String, String> {
-    match format {
-        "wgsl" => proctex::export::morph_wgsl(keys),
-        "glsl" => proctex::export::morph_glsl(keys),
-        f => return Err(format!("unknown shader language `{f}` (wgsl or glsl)")),
-    }
-    .map_err(|e| e.to_string())
-}
-
-/// The complete shader of `params` in `format` ("wgsl" or "glsl"), as `proctex export` writes
-/// it.
-pub fn export_shader(params: &Params, format: &str) -> Result<String, String> {
-    match format {
-        "wgsl" => proctex::export::wgsl(params),
-        "glsl" => proctex::export::glsl(params),
-        f => return Err(format!("unknown shader language `{f}` (wgsl or glsl)")),
-    }
-    .map_err(|e| e.to_string())
+/// The complete shader in `format` ("wgsl" or "glsl") of one texture, or of the morph through
+/// two or more with t as a uniform, as `proctex export KEYS... --format FORMAT` writes it.
+pub fn export_shader(keys: &[Params], format: &str) -> Result<String, String> {
+    proctex::export::shader(keys, format).map_err(|e| e.to_string())
 }

@@ -262,12 +262,9 @@ fn cmd_export(mut a: Args) -> Result<()> {
         .iter()
         .map(|f| read_params(f))
         .collect::<Result<Vec<_>>>()?;
-    let text = match (format.as_str(), keys.as_slice()) {
-        ("json", [p]) => p.to_json(),
-        ("wgsl", [p]) => proctex::export::wgsl(p)?,
-        ("glsl", [p]) => proctex::export::glsl(p)?,
-        ("wgsl", _) => proctex::export::morph_wgsl(&keys)?,
-        _ => proctex::export::morph_glsl(&keys)?,
+    let text = match keys.as_slice() {
+        [p] if format == "json" => p.to_json(),
+        _ => proctex::export::shader(&keys, &format)?,
     };
     match out {
         Some(path) => std::fs::write(&path, &text).map_err(|e| Error::Io {
