@@ -5,24 +5,10 @@
 // pass is a full-screen triangle into an r32float target. `N` is the tile side, `TILE_SEED` and
 // `TILE_STREAM` the hash inputs, `TILE_ODD_OFFSET` the odd shift, and `TILE_MEAN` /
 // `TILE_INV_SD` the normalisation measured by the CPU (all generated constants).
-// Twins: analyzer/src/rng.rs (pcg_hash, hash3, uniform — uniform01 here —, gaussian; all f32 here) and
+// The hashes are in hash.wgsl. Twins: analyzer/src/rng.rs (gaussian, f32 here) and
 // analyzer/src/noise.rs (a_coeff; wrap_mod is its `rem_euclid` indexing).
 
 @group(0) @binding(0) var bake_src: texture_2d<f32>;
-
-fn pcg_hash(x: u32) -> u32 {
-    let state = x * 747796405u + 2891336453u;
-    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-fn hash3(seed: u32, stream: u32, index: u32) -> u32 {
-    return pcg_hash(index + pcg_hash(stream + pcg_hash(seed)));
-}
-
-fn uniform01(seed: u32, stream: u32, index: u32) -> f32 {
-    return (f32(hash3(seed, stream, index) >> 8u) + 0.5) / 16777216.0;
-}
 
 fn gaussian(seed: u32, stream: u32, index: u32) -> f32 {
     let u1 = uniform01(seed, stream, index * 2u);

@@ -24,6 +24,17 @@ struct Params {
     knots: array<vec4<f32>, 33>,
     // [knot] → Fritsch–Carlson tangent of channels 0, 1, 2
     tangents: array<vec4<f32>, 33>,
+    // structured models (pattern.wgsl): kind (0: the noise model), ramp stops, cell-hash
+    // seed, unused
+    pattern: vec4<u32>,
+    // 1/pattern scale, cos and sin of the pattern rotation, log2(1/pattern scale)
+    pattern_transform: vec4<f32>,
+    // the pattern's structural values in spec order (analyzer/src/pattern.rs)
+    pattern_values: array<vec4<f32>, 2>,
+    // [octave] → offset (x, y, z) of the pattern's noise octaves in coefficient units
+    pattern_offsets: array<vec4<f32>, 5>,
+    // [stop] → ramp colour RGB and its structure value `at`
+    ramp: array<vec4<f32>, 16>,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;

@@ -59,7 +59,7 @@ fn seamless_pixel(frag: vec2<f32>) -> vec3<f32> {
         channel_noise_wrapped(0u, a),
         channel_noise_wrapped(1u, a),
         channel_noise_wrapped(2u, a),
-    ));
+    ), params.mean.xyz);
 }
 
 @vertex

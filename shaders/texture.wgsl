@@ -32,9 +32,15 @@ fn channel_noise(c: u32, u: vec3<f32>, log2_fp: f32) -> f32 {
     return sum;
 }
 
-// The colour of the three channels' noise values g: histogram matching, contrast, back to RGB.
-fn colour(g: vec3<f32>) -> vec3<f32> {
+// The colour of the three channels' noise values g on the structured models' ramp colour base
+// (ignored by the noise model): histogram matching, contrast, back to RGB.
+fn colour(g: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
     var rgb = params.mean.xyz;
+    if (params.pattern.x != 0u) {
+        for (var i = 0u; i < 3u; i++) {
+            rgb[i] += params.mean.w * (base[i] - params.mean[i]);
+        }
+    }
     let k = params.counts.y;
     for (var c = 0u; c < 3u; c++) {
         var v: f32;
@@ -53,9 +59,13 @@ fn colour(g: vec3<f32>) -> vec3<f32> {
 
 fn shade(world: vec3<f32>, log2_fp: f32) -> vec3<f32> {
     let u = texel(world);
+    var base = params.mean.xyz;
+    if (params.pattern.x != 0u) {
+        base = ramp(pattern(u, log2_fp));
+    }
     return colour(vec3<f32>(
         channel_noise(0u, u, log2_fp),
         channel_noise(1u, u, log2_fp),
         channel_noise(2u, u, log2_fp),
-    ));
+    ), base);
 }

@@ -96,6 +96,16 @@ pub fn analyze_bytes(bytes: &[u8], opts: &Options) -> Result<Analysis> {
 
 /// Crops, reduces and analyses a decoded photo.
 pub fn analyze_photo(photo: &Photo, opts: &Options) -> Result<Analysis> {
+    analyze_photo_with(photo, opts, analyze_prepared)
+}
+
+/// Crops and reduces `photo` as `opts` say, runs `analysis` on the result, and stamps the
+/// params with the world scale (one texel is one analysed pixel) and their provenance.
+pub fn analyze_photo_with(
+    photo: &Photo,
+    opts: &Options,
+    analysis: impl FnOnce(&Photo, &Options) -> Analysis,
+) -> Result<Analysis> {
     opts.validate()?;
     let cropped;
     let region = match opts.crop {
@@ -108,7 +118,7 @@ pub fn analyze_photo(photo: &Photo, opts: &Options) -> Result<Analysis> {
     region.check_min_size()?;
     let reduced = region.reduced(opts.size);
     let reduced: &Photo = reduced.as_ref().unwrap_or(region);
-    let mut analysis = analyze_prepared(reduced, opts);
+    let mut analysis = analysis(reduced, opts);
     // One texel is one analysed pixel; in world units (photo pixels) that is this many.
     analysis.params.transform.scale = region.width as f32 / reduced.width as f32;
     analysis.params.source = Some(Source {

@@ -16,7 +16,8 @@
 
 use crate::error::{Error, Result};
 use crate::morph::quat_from_matrix;
-use crate::params::{MAX_BANDS, MAX_KNOTS, Model, Params};
+use crate::params::{MAX_BANDS, MAX_KNOTS, Params};
+use crate::pattern::{MAX_STOPS, OCTAVES};
 use crate::render::{Prepared, tile_for};
 use crate::rng::stream;
 
@@ -106,13 +107,25 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
         (0..MAX_KNOTS).map(|k| [p.tangents[0][k], p.tangents[1][k], p.tangents[2][k], 0.0]),
         MAX_KNOTS,
     );
+    let w = p.pattern_values;
+    let values = lang.array(
+        [[w[0], w[1], w[2], w[3]], [w[4], w[5], w[6], w[7]]].into_iter(),
+        2,
+    );
+    let octaves = lang.array(
+        p.pattern_offsets.iter().map(|o| [o[0], o[1], o[2], 0.0]),
+        OCTAVES,
+    );
+    let ramp = lang.array(p.ramp.iter().copied(), MAX_STOPS);
     // WGSL allows a trailing comma in a constructor; GLSL does not.
     format!(
-        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {knots},\n    {tangents}\n)",
+        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {knots},\n    {tangents},\n    {},\n    {},\n    {values},\n    {octaves},\n    {ramp}\n)",
         lang.vec4([p.mean[0], p.mean[1], p.mean[2], p.contrast]),
         lang.vec4([p.inv_scale, p.rot[0], p.rot[1], 0.0]),
         lang.uvec4([p.bands, p.knots, p.solid as u32, p.histogram as u32]),
         lang.vec4([p.sigma[0], p.sigma[1], p.sigma[2], 0.0]),
+        lang.uvec4(p.pattern),
+        lang.vec4(p.pattern_transform),
     )
 }
 
@@ -231,6 +244,8 @@ fn wgsl_of(subject: &Subject) -> String {
         proctex_shaders::TILE3_ATLAS,
         proctex_shaders::NOISE,
         proctex_shaders::HISTOGRAM,
+        proctex_shaders::HASH,
+        proctex_shaders::PATTERN,
         proctex_shaders::TEXTURE,
         proctex_shaders::BAKE,
         passes,
@@ -278,12 +293,14 @@ fn glsl_of(subject: &Subject) -> String {
         "#version 300 es\n{notes}\n\
          precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n{solid}\
          #if defined(PROCTEX_VERTEX)\n{GLSL_VERTEX}\n\
-         #elif defined(PROCTEX_PASS)\n{bake}\n{bakepasses}\n\
-         #else\n{params}\n{value}\n{tile3}\n{noise}\n{histogram}\n{texture}\n{entry}\n\
+         #elif defined(PROCTEX_PASS)\n{bake}\n{hash}\n{bakepasses}\n\
+         #else\n{params}\n{value}\n{tile3}\n{noise}\n{histogram}\n{hash}\n{pattern}\n{texture}\n{entry}\n\
          #endif\n",
         params = gl::PARAMS,
         noise = gl::NOISE,
         histogram = gl::HISTOGRAM,
+        hash = gl::HASH,
+        pattern = gl::PATTERN,
         texture = gl::TEXTURE,
         entry = glsl_entry(tp.solid, subject.is_morph()),
     )
@@ -318,6 +335,13 @@ impl MorphTables {
         for k in keys {
             k.validate()?;
         }
+        if keys.iter().any(|k| k.model.pattern().is_some()) {
+            return Err(Error::Option(
+                "morph shaders of structured models are not available yet: export each key's \
+                 shader, or morph noise-model presets"
+                    .into(),
+            ));
+        }
         if keys.iter().any(|k| k.solid != keys[0].solid) {
             return Err(Error::Option(
                 "cannot export a morph between plane and solid textures: make them all plane or \
@@ -340,7 +364,7 @@ impl MorphTables {
         let segments = keys
             .windows(2)
             .map(|w| {
-                let (Model::Noise(ma), Model::Noise(mb)) = (&w[0].model, &w[1].model);
+                let (ma, mb) = (w[0].model.noise_layer(), w[1].model.noise_layer());
                 let k = ma.histogram.knots[0].len().max(mb.histogram.knots[0].len()) - 1;
                 let turn = crate::morph::shorter_turn(
                     w[0].transform.rotation_deg,

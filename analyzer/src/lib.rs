@@ -16,11 +16,13 @@ pub mod input;
 pub mod morph;
 pub mod noise;
 pub mod params;
+pub mod pattern;
 pub mod render;
 pub mod rng;
 pub mod seamless;
 pub mod solid;
 pub mod spectrum;
+pub mod structure;
 pub mod two_tone;
 
 pub use error::{Error, Result};

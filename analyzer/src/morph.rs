@@ -152,7 +152,7 @@ pub fn morph(a: &Params, b: &Params, t: f32) -> Result<Params> {
     if !(0.0..=1.0).contains(&t) {
         return Err(Error::Option(format!("morph t = {t} is not in [0, 1]")));
     }
-    let (Model::Noise(ma), Model::Noise(mb)) = (&a.model, &b.model);
+    let (ma, mb) = (a.model.noise_layer(), b.model.noise_layer());
     let mut out = a.clone();
     out.source = None;
     out.transform.scale = (a.transform.scale.ln() * (1.0 - t) + b.transform.scale.ln() * t).exp();
@@ -194,7 +194,7 @@ pub fn morph(a: &Params, b: &Params, t: f32) -> Result<Params> {
         v
     });
     let enabled = ma.histogram.enabled || mb.histogram.enabled;
-    out.model = Model::Noise(NoiseModel {
+    let noise = NoiseModel {
         weights,
         histogram: Histogram {
             enabled,
@@ -204,7 +204,8 @@ pub fn morph(a: &Params, b: &Params, t: f32) -> Result<Params> {
                 ma.histogram.knots.clone()
             },
         },
-    });
+    };
+    out.model = morph_structure(a, b, t, out.colour.mean, noise);
     if t == 1.0 && a.seed == b.seed {
         // Exactly the second texture (bands and knots as it has them).
         let mut end = b.clone();
@@ -218,6 +219,100 @@ pub fn morph(a: &Params, b: &Params, t: f32) -> Result<Params> {
     }
     out.validate()?;
     Ok(out)
+}
+
+/// The model a fraction `t` of the way from `a`'s to `b`'s, given the interpolated mean and
+/// noise layer.
+///
+/// Same pattern family: its scale (geometrically), rotation (the shorter way) and values
+/// interpolate, and so do the ramps (both evaluated at the union of their stops). Different
+/// families (a noise model counts as the flat ramp at the mean colour): a cross-fade through
+/// the noise layer. The first half fades the first pattern's ramp to the flat mean colour, the
+/// second half fades the second's in, so the pattern switches at `t = ½` where the ramp is flat
+/// and the switch is invisible: continuous in `t`, with no second pattern in the shader.
+fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseModel) -> Model {
+    use crate::pattern::{Pattern, RampStop};
+    let flat = |stops: &[RampStop]| -> Vec<RampStop> {
+        stops
+            .iter()
+            .map(|s| RampStop {
+                at: s.at,
+                rgb: mean,
+            })
+            .collect()
+    };
+    let structured = |pattern: Pattern, ramp: Vec<RampStop>| {
+        Model::Structured(crate::params::StructuredModel {
+            pattern,
+            ramp,
+            residual: noise.clone(),
+        })
+    };
+    match (&a.model, &b.model) {
+        (Model::Noise(_), Model::Noise(_)) => Model::Noise(noise.clone()),
+        (Model::Structured(sa), Model::Structured(sb)) if sa.pattern.kind == sb.pattern.kind => {
+            let (pa, pb) = (&sa.pattern, &sb.pattern);
+            let mut pattern = pa.clone();
+            pattern.scale = (pa.scale.ln() * (1.0 - t) + pb.scale.ln() * t).exp();
+            pattern.rotation_deg =
+                pa.rotation_deg + t * shorter_turn(pa.rotation_deg, pb.rotation_deg);
+            let (va, vb) = (pa.vector(), pb.vector());
+            let values: Vec<f32> = va.iter().zip(&vb).map(|(&x, &y)| lerp(x, y, t)).collect();
+            pattern.set_vector(&values);
+            structured(pattern, lerp_ramps(&sa.ramp, &sb.ramp, t))
+        }
+        _ if t < 0.5 => match &a.model {
+            Model::Structured(sa) => structured(
+                sa.pattern.clone(),
+                lerp_ramps(&sa.ramp, &flat(&sa.ramp), 2.0 * t),
+            ),
+            Model::Noise(_) => Model::Noise(noise.clone()),
+        },
+        _ => match &b.model {
+            Model::Structured(sb) => structured(
+                sb.pattern.clone(),
+                lerp_ramps(&flat(&sb.ramp), &sb.ramp, 2.0 * t - 1.0),
+            ),
+            Model::Noise(_) => Model::Noise(noise.clone()),
+        },
+    }
+}
+
+/// Two ramps blended: both evaluated at the union of their stops (at most
+/// [`crate::pattern::MAX_STOPS`], else that many stops evenly over the union's range).
+fn lerp_ramps(
+    a: &[crate::pattern::RampStop],
+    b: &[crate::pattern::RampStop],
+    t: f32,
+) -> Vec<crate::pattern::RampStop> {
+    use crate::pattern::{MAX_STOPS, RampStop, ramp_rows};
+    let rows = |r: &[RampStop]| -> Vec<[f32; 4]> {
+        r.iter()
+            .map(|s| [s.rgb[0], s.rgb[1], s.rgb[2], s.at])
+            .collect()
+    };
+    let (ra, rb) = (rows(a), rows(b));
+    let mut at: Vec<f32> = a.iter().chain(b).map(|s| s.at).collect();
+    at.sort_by(f32::total_cmp);
+    at.dedup();
+    if at.len() > MAX_STOPS {
+        let (lo, hi) = (at[0], at[at.len() - 1]);
+        at = (0..MAX_STOPS)
+            .map(|i| lo + (hi - lo) * i as f32 / (MAX_STOPS - 1) as f32)
+            .collect();
+    }
+    if at.len() < 2 {
+        at = vec![at.first().copied().unwrap_or(0.0), 1.0];
+    }
+    at.iter()
+        .map(|&x| {
+            let (ca, cb) = (ramp_rows(&ra, x), ramp_rows(&rb, x));
+            RampStop {
+                at: x,
+                rgb: [0, 1, 2].map(|c| lerp(ca[c], cb[c], t).clamp(0.0, 1.0)),
+            }
+        })
+        .collect()
 }
 
 /// A morph through `keys` (two or more): `t ∈ [0, 1]` spread evenly over the segments.

@@ -11,6 +11,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::pattern::{MAX_STOPS, Pattern, RampStop};
 
 /// The format tag of this version.
 pub const FORMAT: &str = "proctex/1";
@@ -78,6 +79,58 @@ pub const MAX_CONTRAST: f32 = 4.0;
 pub enum Model {
     /// Multiresolution wavelet noise per decorrelated channel (Lagae et al. 2009).
     Noise(NoiseModel),
+    /// A structured pattern through a colour ramp, plus residual noise (issue 5).
+    Structured(StructuredModel),
+}
+
+/// A structured texture: `rgb = mean + contrast·((ramp(s(u)) − mean) + Σ_k v_k·basis[k])`,
+/// where `s` is the pattern's structure value, `ramp` the fitted colour ramp, and `v_k` the
+/// residual noise model's decorrelated channels (Lagae's model of what the pattern and ramp do
+/// not explain: the grain of a brick, the fibres of a plank). The colour block's basis is the
+/// residual's PCA basis and its mean the contrast pivot.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StructuredModel {
+    /// The pattern and its placement.
+    pub pattern: Pattern,
+    /// Colours along the structure value, 2 to [`MAX_STOPS`] stops, `at` non-decreasing.
+    pub ramp: Vec<RampStop>,
+    /// The residual stochastic detail.
+    pub residual: NoiseModel,
+}
+
+impl Model {
+    /// The noise layer: the whole model for noise, the residual for structured models.
+    pub fn noise_layer(&self) -> &NoiseModel {
+        match self {
+            Model::Noise(n) => n,
+            Model::Structured(s) => &s.residual,
+        }
+    }
+
+    /// The noise layer, mutably.
+    pub fn noise_layer_mut(&mut self) -> &mut NoiseModel {
+        match self {
+            Model::Noise(n) => n,
+            Model::Structured(s) => &mut s.residual,
+        }
+    }
+
+    /// The pattern, for structured models.
+    pub fn pattern(&self) -> Option<&Pattern> {
+        match self {
+            Model::Noise(_) => None,
+            Model::Structured(s) => Some(&s.pattern),
+        }
+    }
+
+    /// A short name: "noise" or the pattern's kind.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Model::Noise(_) => "noise",
+            Model::Structured(s) => s.pattern.kind.name(),
+        }
+    }
 }
 
 /// Lagae's model: for each decorrelated channel `c`, `M_c(u) = Σ_j w_cj N(u·2^−j + o_cj)`,
@@ -126,6 +179,7 @@ impl Params {
     pub fn noise(&self) -> Option<&NoiseModel> {
         match &self.model {
             Model::Noise(n) => Some(n),
+            Model::Structured(_) => None,
         }
     }
 
@@ -214,6 +268,7 @@ impl Params {
         }
         match &self.model {
             Model::Noise(n) => n.validate("model"),
+            Model::Structured(s) => s.validate("model"),
         }?;
         if let Some(s) = &self.source
             && (s.width == 0 || s.height == 0 || s.analysis_width == 0 || s.analysis_height == 0)
@@ -292,6 +347,54 @@ impl NoiseModel {
             }
         }
         Ok(())
+    }
+}
+
+impl StructuredModel {
+    fn validate(&self, at: &str) -> Result<()> {
+        let p = &self.pattern;
+        check_range(&format!("{at}.pattern.scale"), p.scale, 1e-2, 1e5)?;
+        check_range(
+            &format!("{at}.pattern.rotation_deg"),
+            p.rotation_deg,
+            -3600.0,
+            3600.0,
+        )?;
+        let specs = p.kind.specs();
+        for (name, &v) in &p.values {
+            let Some(s) = specs.iter().find(|s| s.name == name) else {
+                let known: Vec<&str> = specs.iter().map(|s| s.name).collect();
+                return Err(Error::params(
+                    format!("{at}.pattern.values.{name}"),
+                    format!(
+                        "`{name}` is not a parameter of `{}` (it has: {})",
+                        p.kind.name(),
+                        known.join(", ")
+                    ),
+                ));
+            };
+            check_range(&format!("{at}.pattern.values.{name}"), v, s.min, s.max)?;
+        }
+        let n = self.ramp.len();
+        if !(2..=MAX_STOPS).contains(&n) {
+            return Err(Error::params(
+                format!("{at}.ramp"),
+                format!("must have 2 to {MAX_STOPS} stops, has {n}"),
+            ));
+        }
+        for (i, stop) in self.ramp.iter().enumerate() {
+            check_range(&format!("{at}.ramp[{i}].at"), stop.at, 0.0, 1.0)?;
+            for c in 0..3 {
+                check_range(&format!("{at}.ramp[{i}].rgb[{c}]"), stop.rgb[c], 0.0, 1.0)?;
+            }
+        }
+        if self.ramp.windows(2).any(|w| w[1].at < w[0].at) {
+            return Err(Error::params(
+                format!("{at}.ramp"),
+                "stops must be in non-decreasing order of `at`",
+            ));
+        }
+        self.residual.validate(&format!("{at}.residual"))
     }
 }
 

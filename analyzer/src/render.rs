@@ -13,6 +13,7 @@
 use crate::histogram::{fc_tangents, knot_coordinate, spline_eval};
 use crate::noise::{TILE_2D, TILE_3D, Tile, band_fade, noise2, noise3};
 use crate::params::{MAX_BANDS, MAX_KNOTS, Model, Params};
+use crate::pattern::{MAX_STOPS, MAX_VALUES, OCTAVES, pattern, ramp};
 use crate::rng;
 
 /// Params flattened for per-pixel evaluation (mirrors the GPU uniform block).
@@ -46,12 +47,23 @@ pub struct Prepared {
     pub inv_scale: f32,
     /// cos and sin of the rotation.
     pub rot: [f32; 2],
+    /// Pattern kind (0: the noise model; [`PatternKind::index`] otherwise), ramp stops, seed of
+    /// the cell hashes, unused.
+    pub pattern: [u32; 4],
+    /// Pattern placement: 1/pattern scale, cos and sin of its rotation, log2(1/pattern scale).
+    pub pattern_transform: [f32; 4],
+    /// The pattern's structural values in spec order, zero past their count.
+    pub pattern_values: [f32; MAX_VALUES],
+    /// Offsets of the pattern's noise octaves in coefficient units.
+    pub pattern_offsets: [[f32; 3]; OCTAVES],
+    /// Ramp stops: RGB and `at`, the last stop repeated past the count.
+    pub ramp: [[f32; 4]; MAX_STOPS],
 }
 
 impl Prepared {
     /// Flattens validated params.
     pub fn new(params: &Params) -> Prepared {
-        let Model::Noise(model) = &params.model;
+        let model = params.model.noise_layer();
         let tile_n = if params.solid { TILE_3D } else { TILE_2D } as f32;
         let mut p = Prepared {
             bands: model.bands() as u32,
@@ -71,7 +83,33 @@ impl Prepared {
                 let r = params.transform.rotation_deg.to_radians();
                 [r.cos(), r.sin()]
             },
+            pattern: [0, 0, params.seed, 0],
+            pattern_transform: [1.0, 1.0, 0.0, 0.0],
+            pattern_values: [0.0; MAX_VALUES],
+            pattern_offsets: [[0.0; 3]; OCTAVES],
+            ramp: [[0.0; 4]; MAX_STOPS],
         };
+        if let Model::Structured(m) = &params.model {
+            let pat = &m.pattern;
+            p.pattern[0] = pat.kind.index();
+            p.pattern[1] = m.ramp.len() as u32;
+            let r = pat.rotation_deg.to_radians();
+            let is = 1.0 / pat.scale;
+            p.pattern_transform = [is, r.cos(), r.sin(), is.log2()];
+            for (i, v) in pat.vector().into_iter().enumerate() {
+                p.pattern_values[i] = v;
+            }
+            for k in 0..OCTAVES {
+                p.pattern_offsets[k] = [0, 1, 2].map(|a| {
+                    let f = rng::uniform(params.seed, rng::stream::PATTERN, (3 * k + a) as u32);
+                    offset_coeffs(f as f32, tile_n)
+                });
+            }
+            for i in 0..MAX_STOPS {
+                let stop = m.ramp[i.min(m.ramp.len() - 1)];
+                p.ramp[i] = [stop.rgb[0], stop.rgb[1], stop.rgb[2], stop.at];
+            }
+        }
         for c in 0..3 {
             for (j, &w) in model.weights[c].iter().enumerate().take(MAX_BANDS) {
                 p.weights[c][j] = w;
@@ -88,12 +126,14 @@ impl Prepared {
     }
 
     /// Size of [`Prepared::uniform_bytes`]: the `Params` struct of `shaders/params.wgsl`.
-    pub const UNIFORM_SIZE: usize = 16 * (7 + MAX_BANDS + 3 * MAX_BANDS + 2 * MAX_KNOTS);
+    pub const UNIFORM_SIZE: usize =
+        16 * (7 + MAX_BANDS + 3 * MAX_BANDS + 2 * MAX_KNOTS + 4 + OCTAVES + MAX_STOPS);
 
     /// The GPU uniform block, little-endian, laid out as `struct Params` in
     /// `shaders/params.wgsl` (every field a vec4): (mean, contrast), basis rows, (1/scale, cos, sin),
     /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[channel·12 + band],
-    /// knots[k], tangents[k].
+    /// knots[k], tangents[k], then the pattern: (kind, stops, seed, 0) as u32, its transform,
+    /// its 8 values, its octave offsets, and the ramp stops (RGB, at).
     pub fn uniform_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(Self::UNIFORM_SIZE);
         let mut f4 = |v: [f32; 4]| {
@@ -151,6 +191,23 @@ impl Prepared {
             .iter()
             .for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
         out.extend_from_slice(&tail);
+        self.pattern
+            .iter()
+            .for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
+        let mut f4 = |v: [f32; 4]| {
+            v.iter()
+                .for_each(|x| out.extend_from_slice(&x.to_le_bytes()))
+        };
+        f4(self.pattern_transform);
+        let w = self.pattern_values;
+        f4([w[0], w[1], w[2], w[3]]);
+        f4([w[4], w[5], w[6], w[7]]);
+        for o in self.pattern_offsets {
+            f4([o[0], o[1], o[2], 0.0]);
+        }
+        for r in self.ramp {
+            f4(r);
+        }
         debug_assert_eq!(out.len(), Self::UNIFORM_SIZE);
         out
     }
@@ -220,11 +277,17 @@ pub fn channel_noise(prep: &Prepared, tile: &Tile, c: usize, u: [f32; 3], log2_f
     sum
 }
 
-/// The colour of the three channels' noise values `g`: histogram matching (inverse CDF spline),
-/// contrast, back to RGB about the mean.
+/// The colour of the three channels' noise values `g` on the structured models' ramp colour
+/// `base` (ignored by the noise model): histogram matching (inverse CDF spline), contrast, back
+/// to RGB about the mean.
 #[inline]
-pub fn colour(prep: &Prepared, g: [f32; 3]) -> [f32; 3] {
+pub fn colour(prep: &Prepared, g: [f32; 3], base: [f32; 3]) -> [f32; 3] {
     let mut rgb = prep.mean;
+    if prep.pattern[0] != 0 {
+        for i in 0..3 {
+            rgb[i] += prep.contrast * (base[i] - prep.mean[i]);
+        }
+    }
     let k = prep.knots as usize;
     for c in 0..3 {
         let v = if prep.histogram && prep.sigma[c] > 0.0 {
@@ -251,9 +314,15 @@ pub fn colour(prep: &Prepared, g: [f32; 3]) -> [f32; 3] {
 #[inline]
 pub fn shade(prep: &Prepared, tile: &Tile, world: [f32; 3], log2_fp: f32) -> [f32; 3] {
     let u = prep.texel(world);
+    let base = if prep.pattern[0] != 0 {
+        ramp(prep, pattern(prep, tile, u, log2_fp))
+    } else {
+        prep.mean
+    };
     colour(
         prep,
         [0, 1, 2].map(|c| channel_noise(prep, tile, c, u, log2_fp)),
+        base,
     )
 }
 
@@ -379,7 +448,7 @@ pub fn render_flat(params: &Params, width: u32, height: u32) -> Image {
 /// Period of the texture in texels along x and y (unrotated): the coarsest band repeats every
 /// `n·2^(bands−1)` texels and every finer band divides that.
 pub fn period_texels(params: &Params) -> u64 {
-    let Model::Noise(m) = &params.model;
+    let m = params.model.noise_layer();
     let n = if params.solid { TILE_3D } else { TILE_2D } as u64;
     n << (m.bands() - 1)
 }

@@ -16,6 +16,10 @@ pub mod stream {
     pub const TILE_3D: u32 = 0x7431_3344;
     /// Per channel and band random offsets `o_i` of Lagae eq. 1.
     pub const BAND_OFFSETS: u32 = 0x6f66_6673;
+    /// Offsets of the structured patterns' noise octaves.
+    pub const PATTERN: u32 = 0x7061_7474;
+    /// Per-cell randomness of the cell patterns (brick shades, cell centres, plank staggers).
+    pub const CELLS: u32 = 0x6365_6c6c;
 }
 
 /// PCG-RXS-M-XS 32 as a hash of one `u32`.

@@ -48,6 +48,13 @@ impl Seamless {
                 "tile size {size}: choose 16 to {MAX_TILE} pixels"
             )));
         }
+        if prep.pattern[0] != 0 {
+            return Err(Error::Option(
+                "seamless tiles of structured models are not available yet: their patterns \
+                 do not repeat over a tile (export the shader, or a noise-model preset)"
+                    .into(),
+            ));
+        }
         if !(pixel_size.is_finite() && pixel_size > 0.0) {
             return Err(Error::Option(format!(
                 "tile pixel size {pixel_size}: must be a positive number"
@@ -157,6 +164,7 @@ pub fn seamless_pixel(
     colour(
         prep,
         [0, 1, 2].map(|c| channel_noise_wrapped(prep, tile, s, c, a)),
+        prep.mean,
     )
 }
 

@@ -1,6 +1,6 @@
 //! Exported shaders, for every shipped sample as a plane texture and as a solid one: the WGSL
 //! validates with naga, the GLSL compiles with glslang (each of its stages, GLSL ES 3.00 and
-//! desktop 330).
+//! desktop 330). Structured models too: each pattern fitted to the brick sample.
 
 mod common;
 
@@ -18,6 +18,22 @@ fn every_texture() -> Vec<(String, proctex::params::Params)> {
         solid.solid = true;
         out.push((name.to_string(), params));
         out.push((format!("{name}-solid"), solid));
+    }
+    // Every structured model, fitted to the brick photo; two of them solid too.
+    let brick = sample("skimage_brick_512.png").reduced(256).unwrap();
+    for kind in proctex::pattern::PatternKind::ALL {
+        let pattern = proctex::pattern::Pattern::new(kind, 12.0);
+        let params =
+            proctex::structure::fit_structured(&brick, &pattern, &Options::default(), false).params;
+        if matches!(
+            kind,
+            proctex::pattern::PatternKind::Cells | proctex::pattern::PatternKind::Rings
+        ) {
+            let mut solid = params.clone();
+            solid.solid = true;
+            out.push((format!("{}-solid", kind.name()), solid));
+        }
+        out.push((kind.name().to_string(), params));
     }
     out
 }
@@ -147,7 +163,7 @@ fn every_morph() -> Vec<(String, Vec<proctex::params::Params>)> {
     };
     let (a, b, c) = (key(0), key(1), key(2));
     let mut c_flat = c.clone();
-    let proctex::params::Model::Noise(m) = &mut c_flat.model;
+    let m = c_flat.model.noise_layer_mut();
     m.histogram.enabled = false;
     let solid = |p: &proctex::params::Params| {
         let mut p = p.clone();

@@ -67,7 +67,7 @@ fn morphs_are_exact_at_the_ends_valid_and_smooth() {
     // 256² analysis: one band fewer than the 512² ones.
     let black = analysed("stk_blackrock_256.png");
     let mut no_hist = analysed("skimage_gravel_512.png");
-    let proctex::params::Model::Noise(m) = &mut no_hist.model;
+    let m = no_hist.model.noise_layer_mut();
     m.histogram.enabled = false;
     no_hist.transform.scale = 3.0;
     no_hist.transform.rotation_deg = 170.0;

@@ -209,7 +209,7 @@ fn one_period_tiles_seamlessly() {
     };
     assert_seamless(&render(&p, 512, 512, &view), "8 bands, minified");
     // A 3-band model has a 512-texel period: rendered at one texel per pixel, all bands on.
-    let proctex::params::Model::Noise(m) = &mut p.model;
+    let m = p.model.noise_layer_mut();
     for w in &mut m.weights {
         w.truncate(3);
     }

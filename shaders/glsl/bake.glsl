@@ -4,22 +4,7 @@
 // textures, `PROCTEX_PASS 1|2|3|4`), fragment passes into R32F targets. `N`, `TILE_SEED`,
 // `TILE_STREAM`, `TILE_ODD_OFFSET`, `TILE_MEAN` and `TILE_INV_SD` are generated constants.
 // Unsigned arithmetic wraps in GLSL ES 3.00 as in WGSL; indices wrap with masks (N is a power of
-// two; % is undefined for negative operands in GLSL).
-
-uint pcg_hash(uint x) {
-    uint state = x * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-uint hash3(uint seed, uint stream, uint index) {
-    return pcg_hash(index + pcg_hash(stream + pcg_hash(seed)));
-}
-
-// `uniform` in Rust (a reserved word in GLSL; in WGSL it would shadow `var<uniform>`).
-float uniform01(uint seed, uint stream, uint index) {
-    return (float(hash3(seed, stream, index) >> 8u) + 0.5) / 16777216.0;
-}
+// two; % is undefined for negative operands in GLSL). The hashes are in hash.glsl.
 
 float gaussian(uint seed, uint stream, uint index) {
     float u1 = uniform01(seed, stream, index * 2u);

@@ -99,6 +99,7 @@ Params morph(MorphSegment seg, float t) {
     }
     p.sigma = sqrt(energy);
     p.offsets = MORPH_OFFSETS;
+    p.pattern = uvec4(0u);
     for (int k = 0; k < MAX_KNOTS; k++) {
         p.knots[k] = vec4(0.0);
     }

@@ -14,4 +14,9 @@ struct Params {
     vec4 offsets[36];       // [channel*12 + band] -> offset (x, y, z) in coefficient units
     vec4 knots[33];         // [knot] -> knot value of channels 0, 1, 2
     vec4 tangents[33];      // [knot] -> Fritsch-Carlson tangent of channels 0, 1, 2
+    uvec4 pattern;          // pattern kind (0: noise model), ramp stops, cell-hash seed, unused
+    vec4 pattern_transform; // 1/pattern scale, cos, sin of its rotation, log2(1/pattern scale)
+    vec4 pattern_values[2]; // structural values in spec order
+    vec4 pattern_offsets[5];// [octave] -> offset of the pattern's noise octaves
+    vec4 ramp[16];          // [stop] -> ramp colour RGB, structure value `at`
 };

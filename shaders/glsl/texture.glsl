@@ -30,9 +30,15 @@ float channel_noise(int c, vec3 u, float log2_fp) {
     return sum;
 }
 
-// The colour of the three channels' noise values g: histogram matching, contrast, back to RGB.
-vec3 colour(vec3 g) {
+// The colour of the three channels' noise values g on the structured models' ramp colour base
+// (ignored by the noise model): histogram matching, contrast, back to RGB.
+vec3 colour(vec3 g, vec3 base) {
     vec3 rgb = params.mean.xyz;
+    if (params.pattern.x != 0u) {
+        for (int i = 0; i < 3; i++) {
+            rgb[i] += params.mean.w * (base[i] - params.mean[i]);
+        }
+    }
     uint k = params.counts.y;
     for (int c = 0; c < 3; c++) {
         float v;
@@ -51,8 +57,12 @@ vec3 colour(vec3 g) {
 
 vec3 shade(vec3 world, float log2_fp) {
     vec3 u = texel(world);
+    vec3 base = params.mean.xyz;
+    if (params.pattern.x != 0u) {
+        base = ramp(pattern(u, log2_fp));
+    }
     return colour(vec3(
         channel_noise(0, u, log2_fp),
         channel_noise(1, u, log2_fp),
-        channel_noise(2, u, log2_fp)));
+        channel_noise(2, u, log2_fp)), base);
 }

@@ -20,6 +20,10 @@ pub const NOISE: &str = include_str!("../noise.wgsl");
 pub const HISTOGRAM: &str = include_str!("../histogram.wgsl");
 /// The texture at a point (`shade`).
 pub const TEXTURE: &str = include_str!("../texture.wgsl");
+/// The one hash (`pcg_hash`, `hash3`, `uniform01`): tile bakes and cell patterns.
+pub const HASH: &str = include_str!("../hash.wgsl");
+/// Structured models: the pattern's structure value and the colour ramp.
+pub const PATTERN: &str = include_str!("../pattern.wgsl");
 /// The 2D plane view (full-screen triangle) and the trivial baseline shader `fs_flat`.
 pub const PLANE: &str = include_str!("../plane.wgsl");
 /// The solid view: sphere or cube of the 3D texture, orbit camera.
@@ -46,9 +50,10 @@ pub fn params_private(init: Option<&str>) -> String {
     PARAMS.replace(PARAMS_UNIFORM, &decl)
 }
 
-/// The library every view shader starts with: params, the 3D tile, noise, histogram, texture.
+/// The library every view shader starts with: params, the 3D tile, noise, histogram, hash,
+/// pattern, texture.
 pub fn texture_library() -> String {
-    [PARAMS, TILE3, NOISE, HISTOGRAM, TEXTURE].join("\n")
+    [PARAMS, TILE3, NOISE, HISTOGRAM, HASH, PATTERN, TEXTURE].join("\n")
 }
 
 /// The 2D plane view shader (entry points `vs_main`, `fs_main`).
@@ -87,14 +92,14 @@ pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: f64, inv_sd: f64) ->
 /// The 2D tile-baking shader for the given constants (entry points `vs_bake`,
 /// `fs_bake_down_x`, `fs_bake_down_y`, `fs_bake_tile`).
 pub fn bake_shader(constants: &str) -> String {
-    [constants, BAKE, BAKE2].join("\n")
+    [constants, HASH, BAKE, BAKE2].join("\n")
 }
 
 /// The 3D tile-baking shader for the given constants (entry points `vs_bake`,
 /// `fs_bake3_down_x`, `fs_bake3_down_y`, `fs_bake3_down_z`, `fs_bake3_tile`), every volume a
 /// slice atlas ([`ATLAS3`]).
 pub fn bake3_shader(constants: &str) -> String {
-    [constants, BAKE, ATLAS3, BAKE3].join("\n")
+    [constants, HASH, BAKE, ATLAS3, BAKE3].join("\n")
 }
 
 /// The plane view reading the 3D tile from a baked atlas, as exported solid textures do.
@@ -105,6 +110,8 @@ pub fn plane_atlas_shader() -> String {
         TILE3_ATLAS,
         NOISE,
         HISTOGRAM,
+        HASH,
+        PATTERN,
         TEXTURE,
         PLANE,
     ]
@@ -129,6 +136,10 @@ pub mod glsl {
     pub const HISTOGRAM: &str = include_str!("../glsl/histogram.glsl");
     /// The texture at a point (`shade`).
     pub const TEXTURE: &str = include_str!("../glsl/texture.glsl");
+    /// The one hash (display shader and bake passes alike).
+    pub const HASH: &str = include_str!("../glsl/hash.glsl");
+    /// Structured models: pattern and colour ramp.
+    pub const PATTERN: &str = include_str!("../glsl/pattern.glsl");
     /// What the tile bakes share (hashes, Gaussian values, filters).
     pub const BAKE: &str = include_str!("../glsl/bake.glsl");
     /// The 2D tile's bake passes (`PROCTEX_PASS` 1, 2, 3).
@@ -144,7 +155,9 @@ pub mod glsl {
     pub const MORPH: &str = include_str!("../glsl/morph.glsl");
 
     /// Every GLSL file: (name, source, its WGSL twin).
-    pub const FILES: [(&str, &str, &str); 10] = [
+    pub const FILES: [(&str, &str, &str); 12] = [
+        ("hash.glsl", HASH, super::HASH),
+        ("pattern.glsl", PATTERN, super::PATTERN),
         ("morph.glsl", MORPH, super::MORPH),
         ("params.glsl", PARAMS, super::PARAMS),
         ("noise.glsl", NOISE, super::NOISE),
@@ -181,7 +194,9 @@ fn odd_offset(n: u32) -> u32 {
 }
 
 /// Every WGSL file: (name, source).
-pub const FILES: [(&str, &str); 14] = [
+pub const FILES: [(&str, &str); 16] = [
+    ("hash.wgsl", HASH),
+    ("pattern.wgsl", PATTERN),
     ("params.wgsl", PARAMS),
     ("morph.wgsl", MORPH),
     ("tile3.wgsl", TILE3),
@@ -226,6 +241,8 @@ pub fn shaders() -> Vec<(&'static str, String)> {
                 TILE3_ATLAS,
                 NOISE,
                 HISTOGRAM,
+                HASH,
+                PATTERN,
                 TEXTURE,
                 PLANE,
             ]

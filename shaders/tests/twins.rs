@@ -2,7 +2,9 @@
 
 /// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
 /// the same name, except for the ones listed in `RENAMED`.
-const TWIN_FILES: [(&str, &[&str]); 13] = [
+const TWIN_FILES: [(&str, &[&str]); 15] = [
+    ("hash.wgsl", &["analyzer/src/rng.rs"]),
+    ("pattern.wgsl", &["analyzer/src/pattern.rs"]),
     (
         "morph.wgsl",
         &["analyzer/src/morph.rs", "analyzer/src/histogram.rs"],

@@ -3,6 +3,7 @@
 
 use proctex::histogram::KNOT_Z;
 use proctex::params::{MAX_BANDS, MAX_KNOTS};
+use proctex::pattern::{MAX_VALUES, OCTAVES};
 use proctex::render::Prepared;
 
 fn parse(name: &str, src: &str) -> naga::Module {
@@ -71,6 +72,7 @@ fn seamless_uniform_matches_rust() {
 
 #[test]
 fn uniform_layout_matches_rust() {
+    const PATTERN_AT: u32 = 112 + 64 * MAX_BANDS as u32 + 32 * MAX_KNOTS as u32;
     let src = proctex_shaders::plane_shader();
     let module = parse("plane", &src);
     let mut layouter = naga::proc::Layouter::default();
@@ -101,7 +103,19 @@ fn uniform_layout_matches_rust() {
             "tangents",
             112 + 64 * MAX_BANDS as u32 + 16 * MAX_KNOTS as u32,
         ),
+        ("pattern", PATTERN_AT),
+        ("pattern_transform", PATTERN_AT + 16),
+        ("pattern_values", PATTERN_AT + 32),
+        (
+            "pattern_offsets",
+            PATTERN_AT + 32 + 16 * (MAX_VALUES as u32 / 4),
+        ),
+        (
+            "ramp",
+            PATTERN_AT + 32 + 16 * (MAX_VALUES as u32 / 4) + 16 * OCTAVES as u32,
+        ),
     ];
+    assert_eq!(offsets.len(), want.len(), "every member is checked");
     for ((name, off), (wname, woff)) in offsets.iter().zip(want) {
         assert_eq!((name.as_str(), *off), (wname, woff));
     }
@@ -121,6 +135,11 @@ fn uniform_layout_matches_rust() {
     assert_eq!(constant("MAX_BANDS"), MAX_BANDS.to_string());
     assert_eq!(constant("MAX_KNOTS"), MAX_KNOTS.to_string());
     assert_eq!(constant("KNOT_Z").parse::<f32>().unwrap(), KNOT_Z);
+    assert_eq!(constant("PATTERN_OCTAVES"), OCTAVES.to_string());
+    assert_eq!(
+        constant("CELLS_STREAM"),
+        format!("{:#x}", proctex::rng::stream::CELLS)
+    );
 }
 
 #[test]

@@ -1609,7 +1609,7 @@ impl ProctexApp {
                 egui::Slider::new(&mut params.colour.contrast, 0.0..=MAX_CONTRAST).text("contrast"),
             );
             rects.push(("contrast".into(), r));
-            let Model::Noise(model) = &mut params.model;
+            let model = params.model.noise_layer_mut();
             let r = ui.checkbox(&mut model.histogram.enabled, "histogram matching");
             rects.push(("histogram".into(), r));
             let scale = params.transform.scale;

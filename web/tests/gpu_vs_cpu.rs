@@ -172,6 +172,21 @@ fn sample_params(name: &str) -> Params {
 }
 
 fn compare(gpu: &Gpu, what: &str, params: &Params, w: u32, h: u32, view: &View) {
+    compare_within(gpu, what, params, w, h, view, 0.0);
+}
+
+/// [`compare`], allowing a fraction `outliers` of the channel values to differ by more than
+/// 3/255: structured patterns have hard edges (a `floor` at a brick joint), where the last bit
+/// of a GPU's division can move a pixel to the neighbouring brick.
+fn compare_within(
+    gpu: &Gpu,
+    what: &str,
+    params: &Params,
+    w: u32,
+    h: u32,
+    view: &View,
+    outliers: f64,
+) {
     let cpu = render(params, w, h, view).to_rgb8();
     let gpu_rgb = render_gpu(gpu, params, w, h, &What::Plane(*view));
     let diffs: Vec<u8> = cpu
@@ -185,9 +200,11 @@ fn compare(gpu: &Gpu, what: &str, params: &Params, w: u32, h: u32, view: &View) 
         "{what:<40} {w}×{h} on {}: mean |GPU − CPU| = {mae:.4}/255, max {max}/255",
         gpu.adapter_name
     );
+    let far = diffs.iter().filter(|&&d| d > 3).count() as f64 / diffs.len() as f64;
     assert!(
-        mae <= 0.25 && max <= 3,
-        "{what}: mean {mae}/255, max {max}/255"
+        mae <= 0.25 && (max <= 3 || far <= outliers),
+        "{what}: mean {mae}/255, max {max}/255, {:.3} % beyond 3/255",
+        100.0 * far
     );
     // And the image is a texture, not a flat colour.
     let mean = cpu.iter().map(|&v| v as f64).sum::<f64>() / cpu.len() as f64;
@@ -202,7 +219,7 @@ fn gpu_matches_cpu_reference() {
     compare(&gpu, "rock, 1:1", &rock, 256, 192, &View::default());
 
     let mut no_hist = sample_params("skimage_gravel_512.png");
-    let proctex::params::Model::Noise(m) = &mut no_hist.model;
+    let m = no_hist.model.noise_layer_mut();
     m.histogram.enabled = false;
     compare(
         &gpu,
@@ -240,6 +257,88 @@ fn gpu_matches_cpu_reference() {
         ..View::default()
     };
     compare(&gpu, "grass, solid slice z = 41.3", &solid, 128, 128, &view);
+}
+
+/// A structured texture of `kind` on `base`'s colours and noise: the pattern at its defaults,
+/// scale 11 texels, turned 20°, a three-stop ramp about the mean, the noise at 40 %.
+fn structured(base: &Params, kind: proctex::pattern::PatternKind) -> Params {
+    use proctex::params::{Model, StructuredModel};
+    use proctex::pattern::{Pattern, RampStop};
+    let mut p = base.clone();
+    let mut residual = base.model.noise_layer().clone();
+    for w in residual.weights.iter_mut().flatten() {
+        *w *= 0.4;
+    }
+    let m = base.colour.mean;
+    let b = base.colour.basis[0];
+    let tone = |k: f32| [0, 1, 2].map(|c| (m[c] + k * b[c]).clamp(0.0, 1.0));
+    let mut pattern = Pattern::new(kind, 11.0);
+    pattern.rotation_deg = 20.0;
+    p.model = Model::Structured(StructuredModel {
+        pattern,
+        ramp: vec![
+            RampStop {
+                at: 0.0,
+                rgb: tone(-0.25),
+            },
+            RampStop {
+                at: 0.4,
+                rgb: tone(0.05),
+            },
+            RampStop {
+                at: 1.0,
+                rgb: tone(0.2),
+            },
+        ],
+        residual,
+    });
+    p.validate().unwrap();
+    p
+}
+
+#[test]
+fn structured_models_match_cpu() {
+    let gpu = gpu();
+    let rock = sample_params("stk_rock_mountain_512.png");
+    let minified = View {
+        origin: [-40.0, 13.0],
+        pixel_size: 3.1,
+        z: 0.0,
+    };
+    for kind in proctex::pattern::PatternKind::ALL {
+        let p = structured(&rock, kind);
+        let name = kind.name();
+        compare_within(&gpu, name, &p, 160, 120, &View::default(), 0.002);
+        compare_within(
+            &gpu,
+            &format!("{name}, minified"),
+            &p,
+            96,
+            96,
+            &minified,
+            0.002,
+        );
+    }
+    for kind in [
+        proctex::pattern::PatternKind::Turbulence,
+        proctex::pattern::PatternKind::Rings,
+    ] {
+        let mut p = structured(&rock, kind);
+        p.solid = true;
+        let view = View {
+            z: 17.5,
+            ..View::default()
+        };
+        compare_within(
+            &gpu,
+            &format!("{}, solid slice", kind.name()),
+            &p,
+            128,
+            96,
+            &view,
+            0.002,
+        );
+    }
 }
 
 #[test]
@@ -509,7 +608,18 @@ fn exported_wgsl_renders_the_cpu_image() {
     let plane = sample_params("skimage_gravel_512.png");
     let mut solid = sample_params("stk_rock_mountain_512.png");
     solid.solid = true;
-    for (name, params) in [("gravel", plane), ("rock, solid", solid)] {
+    let brick = structured(
+        &sample_params("skimage_brick_512.png"),
+        proctex::pattern::PatternKind::Brick,
+    );
+    let mut rings = structured(&solid, proctex::pattern::PatternKind::Rings);
+    rings.solid = true;
+    for (name, params) in [
+        ("gravel", plane),
+        ("rock, solid", solid),
+        ("brick (structured)", brick),
+        ("rings (structured, solid)", rings),
+    ] {
         let src = proctex::export::wgsl(&params).unwrap();
         exported_wgsl_matches_cpu(&gpu, name, &src, &params, None);
     }
@@ -693,6 +803,7 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, name: &str, src: &str, params: &Params, 
     let cpu = render(params, w, h, &View::default()).to_rgb8();
     let mut sum = 0.0f64;
     let mut max = 0u8;
+    let mut far = 0usize;
     for y in 0..h {
         for x in 0..w {
             let g = &data[(y * row + x * 4) as usize..(y * row + x * 4 + 3) as usize];
@@ -701,15 +812,22 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, name: &str, src: &str, params: &Params, 
                 let d = g[k].abs_diff(c[k]);
                 sum += d as f64;
                 max = max.max(d);
+                far += (d > 3) as usize;
             }
         }
     }
     let mae = sum / (w * h * 3) as f64;
+    let far = far as f64 / (w * h * 3) as f64;
     println!(
-        "exported WGSL (tile baked on the GPU) vs CPU, {name} {w}×{h} on {}: mean {mae:.4}/255, max {max}/255",
-        gpu.adapter_name
+        "exported WGSL (tile baked on the GPU) vs CPU, {name} {w}×{h} on {}: mean {mae:.4}/255, max {max}/255, {:.3} % beyond 3/255",
+        gpu.adapter_name,
+        100.0 * far
     );
-    assert!(mae <= 0.25 && max <= 3, "{name}: mean {mae}, max {max}");
+    // Structured patterns: see compare_within.
+    assert!(
+        mae <= 0.25 && (max <= 3 || far <= 0.002),
+        "{name}: mean {mae}, max {max}"
+    );
 }
 
 /// The PNG tile export: the seamless tile rendered in strips by `shaders/seamless.wgsl`

@@ -197,7 +197,7 @@ fn analysis_flag(flag: &str, a: &mut Args, o: &mut Options) -> Result<bool> {
 
 fn summary(p: &Params, ms: f64) -> String {
     let mut s = String::new();
-    let n = p.noise().expect("noise model");
+    let n = p.model.noise_layer();
     if let Some(src) = &p.source {
         s += &format!(
             "photo {}×{}, analysed at {}×{} ({} estimator) in {ms:.1} ms\n",
@@ -212,6 +212,30 @@ fn summary(p: &Params, ms: f64) -> String {
         n.bands(),
         if n.histogram.enabled { "on" } else { "off" }
     );
+    if let proctex::params::Model::Structured(m) = &p.model {
+        let pat = &m.pattern;
+        let values: Vec<String> = pat
+            .kind
+            .specs()
+            .iter()
+            .zip(pat.vector())
+            .map(|(spec, v)| format!("{} {v:.3}", spec.name))
+            .collect();
+        s += &format!(
+            "model {}: scale {:.2} texels, rotation {:.1}°; {}\n  ramp:",
+            pat.kind.name(),
+            pat.scale,
+            pat.rotation_deg,
+            values.join(", ")
+        );
+        for stop in &m.ramp {
+            s += &format!(
+                " {:.3}→({:.2} {:.2} {:.2})",
+                stop.at, stop.rgb[0], stop.rgb[1], stop.rgb[2]
+            );
+        }
+        s += "\n  residual noise:\n";
+    }
     for c in 0..3 {
         let w: Vec<String> = n.weights[c].iter().map(|v| format!("{v:.4}")).collect();
         s += &format!("  channel {c} weights: {}\n", w.join(" "));

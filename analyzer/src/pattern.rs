@@ -1,0 +1,628 @@
+//! Structured models (issue 5): a *pattern* gives a structure value `s ∈ [0, 1]` at every
+//! texel; a colour *ramp* turns `s` into RGB; the residual stochastic detail on top is Lagae's
+//! noise model (see [`crate::params::StructuredModel`]).
+//!
+//! The two-tone paper (§3, §6) renders every model as a grey structure map between two tones;
+//! its procedural models are perlin, turbulence, grid, brick, wood and rings with a handful of
+//! parameters each. Departures, each for a reason:
+//! - A ramp of up to [`MAX_STOPS`] colours along `s` instead of two tones, fitted to the photo
+//!   (`analyze::fit_structured`): mortar, brick and their shades are more than a line segment.
+//! - The noise inside the patterns is the project's own wavelet noise (the same tile, `noise2`
+//!   or `noise3`), not Perlin's gradient noise: one noise on the GPU and CPU, band-limited so
+//!   that octaves fade out cleanly when a pixel covers them ([`crate::noise::band_fade`]).
+//! - Mortar and plank edges are softened over `max(bevel, pixel footprint)`: anti-aliasing that
+//!   the paper, which rendered at one scale, did not need.
+//! - The lines and rings are displaced by noise four times coarser than their spacing (wood
+//!   grain meanders over several rings, it does not wiggle within one).
+//! - Solid textures evaluate the noise in 3D; the cell patterns (grid, brick, cells, planks,
+//!   rings) are extruded along z, as a wall or a log is: a block carved from a brick wall shows
+//!   courses on its faces, a log shows rings on its end.
+//!
+//! Every function here that takes `&Prepared` has a WGSL twin of the same name in
+//! `shaders/pattern.wgsl`, same operation order in f32.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::noise::{Tile, band_fade, noise2, noise3};
+use crate::render::Prepared;
+use crate::rng;
+
+/// Most stops a colour ramp may have.
+pub const MAX_STOPS: usize = 16;
+/// Most structural parameters a pattern has.
+pub const MAX_VALUES: usize = 8;
+/// Octaves of the noise inside patterns.
+pub const OCTAVES: usize = 5;
+
+/// One structural parameter of a pattern: its name in the params JSON and the UI, its range and
+/// default, and what it does.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValueSpec {
+    /// Name (JSON key, slider label).
+    pub name: &'static str,
+    /// Smallest allowed value.
+    pub min: f32,
+    /// Largest allowed value.
+    pub max: f32,
+    /// Default.
+    pub default: f32,
+    /// What it does, for tooltips and docs.
+    pub doc: &'static str,
+}
+
+const fn v(name: &'static str, min: f32, max: f32, default: f32, doc: &'static str) -> ValueSpec {
+    ValueSpec {
+        name,
+        min,
+        max,
+        default,
+        doc,
+    }
+}
+
+const STRETCH: ValueSpec = v(
+    "stretch",
+    1.0,
+    16.0,
+    1.0,
+    "anisotropy: features this many times longer along x than along y",
+);
+const ROUGHNESS: ValueSpec = v(
+    "roughness",
+    0.2,
+    0.9,
+    0.5,
+    "amplitude ratio of successive noise octaves (higher: more fine detail)",
+);
+const BEVEL: ValueSpec = v(
+    "bevel",
+    0.0,
+    0.5,
+    0.04,
+    "softness of the joint edges, in pattern units",
+);
+const VARIATION: ValueSpec = v(
+    "variation",
+    0.0,
+    1.0,
+    0.2,
+    "random darkening of each piece (brick, stone, plank)",
+);
+const DISTORTION: ValueSpec = v(
+    "distortion",
+    0.0,
+    4.0,
+    0.5,
+    "turbulent displacement of the lines or rings",
+);
+const SHARPNESS: ValueSpec = v(
+    "sharpness",
+    0.3,
+    8.0,
+    1.0,
+    "exponent of the line or ridge profile (higher: thinner bright lines)",
+);
+
+/// The structured pattern families.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PatternKind {
+    /// Fractal noise through a sigmoid: blotches, clouds, stains (perlin with contrast).
+    Perlin,
+    /// Sum of absolute octaves: veins, fire, cracks between blobs.
+    Turbulence,
+    /// Ridged turbulence: sharp crests (veined marble, dried mud ridges).
+    Ridged,
+    /// A grid of rectangular tiles with joints (tiles, paving slabs).
+    Grid,
+    /// Running-bond brick courses with mortar.
+    Brick,
+    /// Voronoi cells with joints: paving, cobbles, stone walls.
+    Cells,
+    /// Staggered wood planks with gaps and grain.
+    Planks,
+    /// Turbulent parallel lines: wood grain seen along the board, marble streaks.
+    WoodLines,
+    /// Turbulent concentric rings: tree rings, agate.
+    Rings,
+}
+
+impl PatternKind {
+    /// Every kind, in the order of their shader index (1-based; 0 is the noise model).
+    pub const ALL: [PatternKind; 9] = [
+        PatternKind::Perlin,
+        PatternKind::Turbulence,
+        PatternKind::Ridged,
+        PatternKind::Grid,
+        PatternKind::Brick,
+        PatternKind::Cells,
+        PatternKind::Planks,
+        PatternKind::WoodLines,
+        PatternKind::Rings,
+    ];
+
+    /// The JSON / CLI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            PatternKind::Perlin => "perlin",
+            PatternKind::Turbulence => "turbulence",
+            PatternKind::Ridged => "ridged",
+            PatternKind::Grid => "grid",
+            PatternKind::Brick => "brick",
+            PatternKind::Cells => "cells",
+            PatternKind::Planks => "planks",
+            PatternKind::WoodLines => "wood_lines",
+            PatternKind::Rings => "rings",
+        }
+    }
+
+    /// The kind of a name.
+    pub fn from_name(name: &str) -> Option<PatternKind> {
+        Self::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// The index the shader switches on (1..=9).
+    pub fn index(self) -> u32 {
+        Self::ALL.iter().position(|&k| k == self).unwrap() as u32 + 1
+    }
+
+    /// The structural parameters, in the order of the uniform block's `pattern_values`.
+    pub fn specs(self) -> &'static [ValueSpec] {
+        match self {
+            PatternKind::Perlin => {
+                const {
+                    &[
+                        STRETCH,
+                        ROUGHNESS,
+                        v(
+                            "contrast",
+                            0.3,
+                            12.0,
+                            2.0,
+                            "steepness of the sigmoid (high: two flat tones)",
+                        ),
+                        v(
+                            "threshold",
+                            -2.0,
+                            2.0,
+                            0.0,
+                            "noise level of the mid tone (moves the balance of the two tones)",
+                        ),
+                    ]
+                }
+            }
+            PatternKind::Turbulence => {
+                const {
+                    &[
+                        STRETCH,
+                        ROUGHNESS,
+                        v(
+                            "contrast",
+                            0.3,
+                            12.0,
+                            2.0,
+                            "gain before saturation: s = 1 − exp(−contrast · turbulence)",
+                        ),
+                    ]
+                }
+            }
+            PatternKind::Ridged => &[STRETCH, ROUGHNESS, SHARPNESS],
+            PatternKind::Grid => {
+                const {
+                    &[
+                        v("aspect", 0.25, 4.0, 1.0, "tile width / tile height"),
+                        v(
+                            "mortar",
+                            0.0,
+                            0.5,
+                            0.08,
+                            "joint width, fraction of a tile's height",
+                        ),
+                        BEVEL,
+                        VARIATION,
+                    ]
+                }
+            }
+            PatternKind::Brick => {
+                const {
+                    &[
+                        v("aspect", 1.0, 6.0, 2.2, "brick length / course height"),
+                        v(
+                            "mortar",
+                            0.0,
+                            0.5,
+                            0.1,
+                            "joint width, fraction of a course's height",
+                        ),
+                        v(
+                            "row_offset",
+                            0.0,
+                            1.0,
+                            0.5,
+                            "shift of each course, in brick lengths (0.5: running bond)",
+                        ),
+                        v(
+                            "jitter",
+                            0.0,
+                            1.0,
+                            0.05,
+                            "random extra shift of each course",
+                        ),
+                        BEVEL,
+                        VARIATION,
+                    ]
+                }
+            }
+            PatternKind::Cells => {
+                const {
+                    &[
+                        v(
+                            "jitter",
+                            0.0,
+                            1.0,
+                            0.8,
+                            "randomness of the cell centres (0: squares)",
+                        ),
+                        v("mortar", 0.0, 0.5, 0.08, "joint width, fraction of a cell"),
+                        BEVEL,
+                        VARIATION,
+                        STRETCH,
+                    ]
+                }
+            }
+            PatternKind::Planks => {
+                const {
+                    &[
+                        v("length", 1.0, 24.0, 8.0, "plank length / plank width"),
+                        v(
+                            "gap",
+                            0.0,
+                            0.3,
+                            0.04,
+                            "gap width, fraction of a plank's width",
+                        ),
+                        BEVEL,
+                        VARIATION,
+                        v(
+                            "grain",
+                            0.0,
+                            1.0,
+                            0.4,
+                            "strength of the grain streaks along each plank",
+                        ),
+                    ]
+                }
+            }
+            PatternKind::WoodLines => &[STRETCH, DISTORTION, SHARPNESS, ROUGHNESS],
+            PatternKind::Rings => &[DISTORTION, SHARPNESS, ROUGHNESS, STRETCH],
+        }
+    }
+
+    /// The default values, in spec order.
+    pub fn defaults(self) -> Vec<f32> {
+        self.specs().iter().map(|s| s.default).collect()
+    }
+}
+
+/// A pattern and its placement: `q = R(−θ)·u / scale` in pattern units from texels `u`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Pattern {
+    /// Which family.
+    pub kind: PatternKind,
+    /// Texels per pattern unit (a brick course, a cell, a plank's width, a line spacing).
+    pub scale: f32,
+    /// Rotation of the pattern, degrees counter-clockwise (on top of the texture's).
+    pub rotation_deg: f32,
+    /// Structural parameters by name (see [`PatternKind::specs`]); missing ones read as their
+    /// defaults.
+    #[serde(default)]
+    pub values: BTreeMap<String, f32>,
+}
+
+impl Pattern {
+    /// The pattern of `kind` at its defaults.
+    pub fn new(kind: PatternKind, scale: f32) -> Pattern {
+        let mut p = Pattern {
+            kind,
+            scale,
+            rotation_deg: 0.0,
+            values: BTreeMap::new(),
+        };
+        p.set_vector(&kind.defaults());
+        p
+    }
+
+    /// The values in spec order (defaults for missing ones).
+    pub fn vector(&self) -> Vec<f32> {
+        self.kind
+            .specs()
+            .iter()
+            .map(|s| self.values.get(s.name).copied().unwrap_or(s.default))
+            .collect()
+    }
+
+    /// Sets the values from spec order (clamped to their ranges).
+    pub fn set_vector(&mut self, values: &[f32]) {
+        self.values.clear();
+        for (s, &x) in self.kind.specs().iter().zip(values) {
+            self.values
+                .insert(s.name.to_string(), x.clamp(s.min, s.max));
+        }
+    }
+
+    /// The value called `name` (its default when missing).
+    pub fn get(&self, name: &str) -> Option<f32> {
+        let s = self.kind.specs().iter().find(|s| s.name == name)?;
+        Some(self.values.get(name).copied().unwrap_or(s.default))
+    }
+}
+
+/// One stop of a colour ramp: the colour at structure value `at`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RampStop {
+    /// Structure value in [0, 1]; stops are non-decreasing in `at`.
+    pub at: f32,
+    /// RGB, display-encoded, in [0, 1].
+    pub rgb: [f32; 3],
+}
+
+/// A smooth step from 0 at `e0` to 1 at `e0 + w` (`w > 0`): the soft edge of joints.
+#[inline]
+pub fn soft_step(e0: f32, w: f32, x: f32) -> f32 {
+    let t = ((x - e0) / w).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// A uniform number in (0, 1) for cell `(ix, iy)` and use `k`: the cell patterns' randomness.
+#[inline]
+pub fn cell_hash(prep: &Prepared, ix: i32, iy: i32, k: u32) -> f32 {
+    let index = (ix as u32).wrapping_mul(0x8da6_b343) ^ (iy as u32).wrapping_mul(0xd816_3841) ^ k;
+    rng::uniform(prep.pattern[2], rng::stream::CELLS, index) as f32
+}
+
+/// Noise octave `k` (frequency `2^k` per pattern unit) at pattern point `q`.
+#[inline]
+pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize) -> f32 {
+    let f = (1u32 << k) as f32;
+    let o = prep.pattern_offsets[k];
+    if prep.solid {
+        noise3(
+            &tile.data,
+            tile.n,
+            [q[0] * f + o[0], q[1] * f + o[1], q[2] * f + o[2]],
+        )
+    } else {
+        noise2(&tile.data, tile.n, [q[0] * f + o[0], q[1] * f + o[1]])
+    }
+}
+
+/// The octaves summed with amplitude ratio `gain`, each octave's noise `n` taken as `n`
+/// (`mode` 0: fractal noise, unit variance when nothing is faded), `|n|` (1: turbulence,
+/// Perlin 1985) or `exp(−sharpness·|n|)` (2: ridged, crests where the noise crosses 0); modes 1
+/// and 2 normalised by the amplitudes' sum. `lfp`: log2 of the pixel footprint in pattern units
+/// (octaves fade out as [`band_fade`] fades bands).
+#[inline]
+pub fn octaves(
+    prep: &Prepared,
+    tile: &Tile,
+    q: [f32; 3],
+    gain: f32,
+    mode: u32,
+    sharpness: f32,
+    lfp: f32,
+) -> f32 {
+    let mut sum = 0.0f32;
+    let mut norm = 0.0f32;
+    let mut amp = 1.0f32;
+    for k in 0..OCTAVES {
+        let fade = band_fade(0, lfp + k as f32);
+        if fade > 0.0 {
+            let n = octave(prep, tile, q, k);
+            let v = match mode {
+                0 => n,
+                1 => n.abs(),
+                _ => (-sharpness * n.abs()).exp(),
+            };
+            sum += amp * fade * v;
+        }
+        norm += if mode == 0 { amp * amp } else { amp };
+        amp *= gain;
+    }
+    if mode == 0 {
+        sum / norm.sqrt()
+    } else {
+        sum / norm
+    }
+}
+
+/// Distance to the nearest joint of the unit cell that `x` (in cells) and `y` fall in, in
+/// units of the cell's height (`aspect`: cell width / height).
+#[inline]
+pub fn joint_distance(fx: f32, fy: f32, aspect: f32) -> f32 {
+    (fx.min(1.0 - fx) * aspect).min(fy.min(1.0 - fy))
+}
+
+/// The structure value of the pattern at texel `u` (pixel footprint `2^log2_fp` texels).
+pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
+    let [is, c, s, log2_is] = prep.pattern_transform;
+    let q = [
+        (c * u[0] + s * u[1]) * is,
+        (-s * u[0] + c * u[1]) * is,
+        u[2] * is,
+    ];
+    let lfp = log2_fp + log2_is;
+    let w = prep.pattern_values;
+    let soft = lfp.exp2();
+    match prep.pattern[0] {
+        // perlin: stretch, roughness, contrast, threshold
+        1 => {
+            let n = octaves(prep, tile, [q[0] / w[0], q[1], q[2]], w[1], 0, 0.0, lfp);
+            1.0 / (1.0 + (-w[2] * (n - w[3])).exp())
+        }
+        // turbulence: stretch, roughness, contrast
+        2 => {
+            let t = octaves(prep, tile, [q[0] / w[0], q[1], q[2]], w[1], 1, 0.0, lfp);
+            1.0 - (-w[2] * t).exp()
+        }
+        // ridged: stretch, roughness, sharpness
+        3 => octaves(prep, tile, [q[0] / w[0], q[1], q[2]], w[1], 2, w[2], lfp),
+        // grid: aspect, mortar, bevel, variation
+        4 => {
+            let x = q[0] / w[0];
+            let (ix, iy) = (x.floor(), q[1].floor());
+            let d = joint_distance(x - ix, q[1] - iy, w[0]);
+            let shade = 1.0 - w[3] * cell_hash(prep, ix as i32, iy as i32, 0);
+            soft_step(0.5 * w[1], w[2].max(soft), d) * shade
+        }
+        // brick: aspect, mortar, row_offset, jitter, bevel, variation
+        5 => {
+            let iy = q[1].floor();
+            let shift = iy * w[2] + w[3] * (cell_hash(prep, 0, iy as i32, 1) - 0.5);
+            let x = q[0] / w[0] + shift;
+            let ix = x.floor();
+            let d = joint_distance(x - ix, q[1] - iy, w[0]);
+            let shade = 1.0 - w[5] * cell_hash(prep, ix as i32, iy as i32, 0);
+            soft_step(0.5 * w[1], w[4].max(soft), d) * shade
+        }
+        // cells: jitter, mortar, bevel, variation, stretch
+        6 => {
+            let p = [q[0] / w[4], q[1]];
+            let (ix, iy) = (p[0].floor(), p[1].floor());
+            let f = [p[0] - ix, p[1] - iy];
+            let (mut f1, mut f2) = (1e9f32, 1e9f32);
+            let mut id = [0i32; 2];
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let cx = ix as i32 + dx;
+                    let cy = iy as i32 + dy;
+                    let px = dx as f32 + 0.5 + w[0] * (cell_hash(prep, cx, cy, 0) - 0.5);
+                    let py = dy as f32 + 0.5 + w[0] * (cell_hash(prep, cx, cy, 1) - 0.5);
+                    let (ex, ey) = (px - f[0], py - f[1]);
+                    let d = ex * ex + ey * ey;
+                    if d < f1 {
+                        f2 = f1;
+                        f1 = d;
+                        id = [cx, cy];
+                    } else if d < f2 {
+                        f2 = d;
+                    }
+                }
+            }
+            let edge = 0.5 * (f2.sqrt() - f1.sqrt());
+            let shade = 1.0 - w[3] * cell_hash(prep, id[0], id[1], 2);
+            soft_step(0.5 * w[1], w[2].max(soft), edge) * shade
+        }
+        // planks: length, gap, bevel, variation, grain
+        7 => {
+            let iy = q[1].floor();
+            let x = q[0] / w[0] + cell_hash(prep, 0, iy as i32, 1);
+            let ix = x.floor();
+            let d = joint_distance(x - ix, q[1] - iy, w[0]);
+            let n = octaves(
+                prep,
+                tile,
+                [q[0] * 0.125, q[1] * 4.0, q[2]],
+                0.5,
+                0,
+                0.0,
+                lfp + 2.0,
+            );
+            let shade = (1.0 - w[3] * cell_hash(prep, ix as i32, iy as i32, 0))
+                * (1.0 - w[4] * (0.5 + 0.5 * n.tanh()));
+            soft_step(0.5 * w[1], w[2].max(soft), d) * shade
+        }
+        // wood lines: stretch, distortion, sharpness, roughness
+        8 => {
+            let n = octaves(
+                prep,
+                tile,
+                [0.25 * q[0] / w[0], 0.25 * q[1], 0.25 * q[2]],
+                w[3],
+                0,
+                0.0,
+                lfp - 2.0,
+            );
+            let v = q[1] + w[1] * n;
+            (0.5 + 0.5 * (std::f32::consts::TAU * v).sin())
+                .max(1e-6)
+                .powf(w[2])
+        }
+        // rings: distortion, sharpness, roughness, stretch
+        9 => {
+            let p = [q[0] / w[3], q[1], q[2]];
+            let n = octaves(
+                prep,
+                tile,
+                [0.25 * p[0], 0.25 * p[1], 0.25 * p[2]],
+                w[2],
+                0,
+                0.0,
+                lfp - 2.0,
+            );
+            let r = (p[0] * p[0] + p[1] * p[1]).sqrt() + w[0] * n;
+            (0.5 + 0.5 * (std::f32::consts::TAU * r).sin())
+                .max(1e-6)
+                .powf(w[1])
+        }
+        _ => 0.0,
+    }
+}
+
+/// The ramp's colour at structure value `s`: linear between stops, constant beyond the ends.
+pub fn ramp(prep: &Prepared, s: f32) -> [f32; 3] {
+    ramp_rows(&prep.ramp[..prep.pattern[1] as usize], s)
+}
+
+/// [`ramp`] over stops given as rows (RGB, at).
+pub fn ramp_rows(r: &[[f32; 4]], s: f32) -> [f32; 3] {
+    let n = r.len();
+    if s <= r[0][3] {
+        return [r[0][0], r[0][1], r[0][2]];
+    }
+    for i in 1..n {
+        if s < r[i][3] {
+            let a = r[i - 1];
+            let b = r[i];
+            let t = (s - a[3]) / (b[3] - a[3]);
+            return [
+                a[0] + (b[0] - a[0]) * t,
+                a[1] + (b[1] - a[1]) * t,
+                a[2] + (b[2] - a[2]) * t,
+            ];
+        }
+    }
+    let l = r[n - 1];
+    [l[0], l[1], l[2]]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_round_trip_their_names_and_indices() {
+        for (i, k) in PatternKind::ALL.into_iter().enumerate() {
+            assert_eq!(PatternKind::from_name(k.name()), Some(k));
+            assert_eq!(k.index(), i as u32 + 1);
+            let specs = k.specs();
+            assert!(!specs.is_empty() && specs.len() <= 7, "{k:?}: 1–7 values");
+            for s in specs {
+                assert!(
+                    s.min < s.max && (s.min..=s.max).contains(&s.default),
+                    "{s:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn soft_step_is_a_clamped_smooth_step() {
+        assert_eq!(soft_step(0.1, 0.2, 0.0), 0.0);
+        assert_eq!(soft_step(0.1, 0.2, 0.3), 1.0);
+        assert!((soft_step(0.1, 0.2, 0.2) - 0.5).abs() < 1e-6);
+    }
+}

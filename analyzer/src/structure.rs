@@ -1,0 +1,323 @@
+//! Fitting a structured model's colour to a photo (issue 5, point 2): given a pattern (from
+//! retrieval, or chosen by hand), the colour ramp along its structure value and the residual
+//! stochastic detail.
+//!
+//! The two-tone paper (§3) colours a model with two tones: the photo's extremal colours on its
+//! first principal axis. Going past two tones, without knowing where the pattern's bricks lie
+//! in the photo:
+//! 1. **Rank matching.** The photo's structure map `t` (its projection on the tone line,
+//!    [`crate::two_tone`]) and the pattern's structure value `s` over an image of the same size
+//!    are both sorted; the photo pixel of rank `r` is paired with the pattern value `ŝ` of the
+//!    same rank. Where the pattern is flat (a brick face at `s = 1`), many photo pixels pair
+//!    with one `s`: their mean colour is the brick's colour, their spread is grain.
+//! 2. **Ramp.** Stops at the pattern's `s` quantiles 0, 1/7, …, 1 (merged where equal); the stop
+//!    colours minimise `Σ |ramp(ŝ_x) − photo_x|²` over all pixels (the ramp is linear in them:
+//!    hat functions, a tridiagonal system). This is the least-squares best ramp under the rank
+//!    pairing, and it reproduces the two-tone model when the pattern has two values.
+//! 3. **Residual.** `photo_x − ramp(ŝ_x)` is what the structure does not explain (grain, stains,
+//!    colour off the tone line). Lagae's analysis models it as noise
+//!    ([`crate::analyze::analyze_prepared`] on the residual plus the photo's mean, so that it is
+//!    a valid colour image): its PCA basis, histogram knots and band weights.
+//!
+//! Tone swap: with `swapped`, the photo's `t` is reversed before the pairing (the pattern's
+//! `s = 0` then meets the photo's lighter tone). Which orientation fits is the retrieval's
+//! decision (it matches both `s` and `1 − s`).
+
+use crate::analyze::{Analysis, Options, analyze_prepared};
+use crate::input::Photo;
+use crate::noise::Tile;
+use crate::params::{
+    Colour, FORMAT, Histogram, Model, NoiseModel, Params, StructuredModel, Transform,
+};
+use crate::pattern::{Pattern, RampStop, pattern, ramp_rows};
+use crate::render::Prepared;
+use crate::two_tone::two_tone;
+
+/// Stops of a fitted ramp (before merging equal ones).
+pub const FIT_STOPS: usize = 8;
+
+/// A structured params shell around `pattern` (flat grey ramp, silent residual): what the
+/// pattern functions need to render `s`, and the start of a fit.
+pub fn shell(pattern: Pattern, seed: u32, solid: bool) -> Params {
+    Params {
+        format: FORMAT.into(),
+        seed,
+        solid,
+        transform: Transform {
+            scale: 1.0,
+            rotation_deg: 0.0,
+        },
+        colour: Colour {
+            mean: [0.5; 3],
+            basis: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            contrast: 1.0,
+        },
+        model: Model::Structured(StructuredModel {
+            pattern,
+            ramp: vec![
+                RampStop {
+                    at: 0.0,
+                    rgb: [0.0; 3],
+                },
+                RampStop {
+                    at: 1.0,
+                    rgb: [1.0; 3],
+                },
+            ],
+            residual: NoiseModel {
+                weights: [vec![0.0], vec![0.0], vec![0.0]],
+                histogram: Histogram {
+                    enabled: false,
+                    knots: [vec![0.0, 0.0], vec![0.0, 0.0], vec![0.0, 0.0]],
+                },
+            },
+        }),
+        source: None,
+    }
+}
+
+/// The pattern's structure values over a `width × height` image at one texel per pixel (pixel
+/// centres, as the renderers sample), row-major.
+pub fn structure_image(pattern: &Pattern, seed: u32, width: u32, height: u32) -> Vec<f32> {
+    let params = shell(pattern.clone(), seed, false);
+    let prep = Prepared::new(&params);
+    let tile = Tile::new_2d(seed);
+    structure_image_prepared(&prep, &tile, width, height)
+}
+
+/// [`structure_image`] with the prepared block and tile supplied.
+pub fn structure_image_prepared(prep: &Prepared, tile: &Tile, width: u32, height: u32) -> Vec<f32> {
+    let mut out = vec![0.0f32; width as usize * height as usize];
+    let row = |y: usize, line: &mut [f32]| {
+        for (x, v) in line.iter_mut().enumerate() {
+            *v = pattern(prep, tile, [x as f32 + 0.5, y as f32 + 0.5, 0.0], 0.0);
+        }
+    };
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        out.par_chunks_mut(width as usize)
+            .enumerate()
+            .for_each(|(y, l)| row(y, l));
+    }
+    #[cfg(target_arch = "wasm32")]
+    for (y, l) in out.chunks_mut(width as usize).enumerate() {
+        row(y, l);
+    }
+    out
+}
+
+/// Fits the ramp and residual of `pattern` to an analysis-size photo (see the module docs).
+pub fn fit_structured(photo: &Photo, pattern: &Pattern, opts: &Options, swapped: bool) -> Analysis {
+    let (w, h) = (photo.width, photo.height);
+    let n = photo.pixels.len();
+    let tt = two_tone(photo);
+    let s_img = structure_image(pattern, opts.seed, w, h);
+
+    // Rank pairing: photo pixel of rank r ↔ pattern value of rank r.
+    let mut s_sorted = s_img.clone();
+    s_sorted.sort_unstable_by(f32::total_cmp);
+    let mut order: Vec<u32> = (0..n as u32).collect();
+    let key = |i: u32| {
+        let t = tt.structure[i as usize];
+        if swapped { 1.0 - t } else { t }
+    };
+    // Ties (flat photo regions) in index order: deterministic.
+    order.sort_unstable_by(|&a, &b| key(a).total_cmp(&key(b)).then(a.cmp(&b)));
+    let mut paired = vec![0.0f32; n];
+    for (r, &i) in order.iter().enumerate() {
+        paired[i as usize] = s_sorted[r];
+    }
+
+    // Stops at the pattern's quantiles, merged where (nearly) equal.
+    let mut at: Vec<f32> = (0..FIT_STOPS)
+        .map(|k| s_sorted[((n - 1) * k) / (FIT_STOPS - 1)].clamp(0.0, 1.0))
+        .collect();
+    at.dedup_by(|b, a| *b - *a < 1e-4);
+    if at.len() < 2 {
+        at = vec![0.0, 1.0];
+    }
+
+    // Least squares over hat functions: tridiagonal normal equations, ridge towards the mean.
+    let k = at.len();
+    let mean = {
+        let mut m = [0.0f64; 3];
+        for p in &photo.pixels {
+            for c in 0..3 {
+                m[c] += p[c] as f64;
+            }
+        }
+        m.map(|v| v / n as f64)
+    };
+    let mut diag = vec![0.0f64; k];
+    let mut off = vec![0.0f64; k]; // off[i]: entry (i, i+1)
+    let mut rhs = vec![[0.0f64; 3]; k];
+    for (x, &sv) in paired.iter().enumerate() {
+        let (i, f) = hat(&at, sv);
+        let px = photo.pixels[x];
+        let (wa, wb) = (1.0 - f as f64, f as f64);
+        diag[i] += wa * wa;
+        for c in 0..3 {
+            rhs[i][c] += wa * px[c] as f64;
+        }
+        if wb > 0.0 {
+            diag[i + 1] += wb * wb;
+            off[i] += wa * wb;
+            for c in 0..3 {
+                rhs[i + 1][c] += wb * px[c] as f64;
+            }
+        }
+    }
+    let ridge = 1e-6 * n as f64 + 1e-9;
+    for i in 0..k {
+        diag[i] += ridge;
+        for c in 0..3 {
+            rhs[i][c] += ridge * mean[c];
+        }
+    }
+    let colours = solve_tridiagonal(&diag, &off, &rhs);
+    let ramp: Vec<RampStop> = at
+        .iter()
+        .zip(&colours)
+        .map(|(&a, c)| RampStop {
+            at: a,
+            rgb: c.map(|v| (v as f32).clamp(0.0, 1.0)),
+        })
+        .collect();
+
+    // The residual, around the photo's mean so that it is a colour image to analyse.
+    let rows: Vec<[f32; 4]> = ramp
+        .iter()
+        .map(|s| [s.rgb[0], s.rgb[1], s.rgb[2], s.at])
+        .collect();
+    let mean32 = mean.map(|v| v as f32);
+    let residual = Photo {
+        width: w,
+        height: h,
+        pixels: photo
+            .pixels
+            .iter()
+            .zip(&paired)
+            .map(|(p, &sv)| {
+                let r = ramp_rows(&rows, sv);
+                [0, 1, 2].map(|c| p[c] - r[c] + mean32[c])
+            })
+            .collect(),
+    };
+    let mut analysis = analyze_prepared(&residual, opts);
+    let noise = match &analysis.params.model {
+        Model::Noise(nm) => nm.clone(),
+        Model::Structured(s) => s.residual.clone(),
+    };
+    analysis.params.colour.mean = analysis.params.colour.mean.map(|v| v.clamp(0.0, 1.0));
+    analysis.params.model = Model::Structured(StructuredModel {
+        pattern: pattern.clone(),
+        ramp,
+        residual: noise,
+    });
+    analysis
+}
+
+/// The stop segment `i` and the fraction `f` towards stop `i + 1` of structure value `s`, as
+/// [`ramp_rows`] interpolates (`f = 0` at and beyond the ends).
+fn hat(at: &[f32], s: f32) -> (usize, f32) {
+    let k = at.len();
+    if s <= at[0] {
+        return (0, 0.0);
+    }
+    for i in 1..k {
+        if s < at[i] {
+            return (i - 1, (s - at[i - 1]) / (at[i] - at[i - 1]));
+        }
+    }
+    (k - 1, 0.0)
+}
+
+/// Solves the symmetric tridiagonal system (Thomas algorithm; the ridge keeps it positive
+/// definite) for three right-hand sides.
+fn solve_tridiagonal(diag: &[f64], off: &[f64], rhs: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let k = diag.len();
+    let mut c = vec![0.0f64; k];
+    let mut d = vec![[0.0f64; 3]; k];
+    let mut denom = diag[0];
+    c[0] = if k > 1 { off[0] / denom } else { 0.0 };
+    d[0] = rhs[0].map(|v| v / denom);
+    for i in 1..k {
+        denom = diag[i] - off[i - 1] * c[i - 1];
+        c[i] = if i + 1 < k { off[i] / denom } else { 0.0 };
+        for ch in 0..3 {
+            d[i][ch] = (rhs[i][ch] - off[i - 1] * d[i - 1][ch]) / denom;
+        }
+    }
+    let mut x = d.clone();
+    for i in (0..k - 1).rev() {
+        for ch in 0..3 {
+            x[i][ch] = d[i][ch] - c[i] * x[i + 1][ch];
+        }
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pattern::PatternKind;
+    use crate::render::{View, render};
+
+    #[test]
+    fn tridiagonal_solver_solves() {
+        let diag = [4.0, 5.0, 6.0];
+        let off = [1.0, 2.0];
+        let x = [[1.0, 2.0, 3.0], [-1.0, 0.5, 0.0], [2.0, 1.0, -3.0]];
+        let rhs: Vec<[f64; 3]> = (0..3)
+            .map(|i| {
+                [0, 1, 2].map(|c| {
+                    diag[i] * x[i][c]
+                        + if i > 0 { off[i - 1] * x[i - 1][c] } else { 0.0 }
+                        + if i < 2 { off[i] * x[i + 1][c] } else { 0.0 }
+                })
+            })
+            .collect();
+        let got = solve_tridiagonal(&diag, &off, &rhs);
+        for i in 0..3 {
+            for c in 0..3 {
+                assert!((got[i][c] - x[i][c]).abs() < 1e-12);
+            }
+        }
+    }
+
+    /// A rendered brick texture (two tones, no residual) fits back to its own tones: the
+    /// ramp's ends are the mortar and brick colours.
+    #[test]
+    fn fit_recovers_the_tones_of_a_two_tone_brick_wall() {
+        let mut pat = Pattern::new(PatternKind::Brick, 16.0);
+        pat.set_vector(&[2.0, 0.15, 0.5, 0.0, 0.02, 0.0]);
+        let mut p = shell(pat.clone(), 3, false);
+        let (mortar, brick) = ([0.8, 0.78, 0.7], [0.6, 0.25, 0.15]);
+        if let Model::Structured(m) = &mut p.model {
+            m.ramp = vec![
+                RampStop {
+                    at: 0.0,
+                    rgb: mortar,
+                },
+                RampStop {
+                    at: 1.0,
+                    rgb: brick,
+                },
+            ];
+        }
+        p.colour.mean = [0.6, 0.4, 0.3];
+        let img = render(&p, 128, 128, &View::default()).to_photo();
+        // Mortar is lighter than brick here: the tones pair the other way round.
+        let a = fit_structured(&img, &pat, &Options::default(), true);
+        let Model::Structured(m) = &a.params.model else {
+            panic!("structured")
+        };
+        let (first, last) = (m.ramp[0].rgb, m.ramp[m.ramp.len() - 1].rgb);
+        for c in 0..3 {
+            assert!((first[c] - mortar[c]).abs() < 0.03, "mortar {first:?}");
+            assert!((last[c] - brick[c]).abs() < 0.03, "brick {last:?}");
+        }
+        a.params.validate().unwrap();
+    }
+}

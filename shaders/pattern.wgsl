@@ -1,0 +1,183 @@
+// Structured models: the pattern's structure value s ∈ [0, 1] at a texel, and the colour ramp
+// along s. Twins: analyzer/src/pattern.rs (soft_step, cell_hash, octave, octaves,
+// joint_distance, pattern, ramp). Same operation order, f32. Needs hash.wgsl (the cell
+// hashes) and noise.wgsl (the octaves read the texture's own noise tile).
+
+const PATTERN_OCTAVES: u32 = 5u;
+// rng::stream::CELLS
+const CELLS_STREAM: u32 = 0x63656c6cu;
+
+fn soft_step(e0: f32, w: f32, x: f32) -> f32 {
+    let t = clamp((x - e0) / w, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+fn cell_hash(ix: i32, iy: i32, k: u32) -> f32 {
+    let index = (bitcast<u32>(ix) * 0x8da6b343u) ^ (bitcast<u32>(iy) * 0xd8163841u) ^ k;
+    return uniform01(params.pattern.z, CELLS_STREAM, index);
+}
+
+fn octave(q: vec3<f32>, k: u32) -> f32 {
+    let f = f32(1u << k);
+    let o = params.pattern_offsets[k].xyz;
+    if (params.counts.z != 0u) {
+        return noise3(vec3<f32>(q.x * f + o.x, q.y * f + o.y, q.z * f + o.z));
+    }
+    return noise2(vec2<f32>(q.x * f + o.x, q.y * f + o.y));
+}
+
+// The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or exp(−sharpness·|n|) (2,
+// ridged).
+fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32) -> f32 {
+    var sum = 0.0;
+    var norm = 0.0;
+    var amp = 1.0;
+    for (var k = 0u; k < PATTERN_OCTAVES; k++) {
+        let fade = band_fade(0u, lfp + f32(k));
+        if (fade > 0.0) {
+            let n = octave(q, k);
+            var v = n;
+            if (mode == 1u) {
+                v = abs(n);
+            } else if (mode == 2u) {
+                v = exp(-sharpness * abs(n));
+            }
+            sum += amp * fade * v;
+        }
+        if (mode == 0u) {
+            norm += amp * amp;
+        } else {
+            norm += amp;
+        }
+        amp *= gain;
+    }
+    if (mode == 0u) {
+        return sum / sqrt(norm);
+    }
+    return sum / norm;
+}
+
+fn joint_distance(fx: f32, fy: f32, aspect: f32) -> f32 {
+    return min(min(fx, 1.0 - fx) * aspect, min(fy, 1.0 - fy));
+}
+
+fn pattern(u: vec3<f32>, log2_fp: f32) -> f32 {
+    let xf = params.pattern_transform;
+    let is = xf.x;
+    let c = xf.y;
+    let s = xf.z;
+    let q = vec3<f32>((c * u.x + s * u.y) * is, (-s * u.x + c * u.y) * is, u.z * is);
+    let lfp = log2_fp + xf.w;
+    let w0 = params.pattern_values[0];
+    let w1 = params.pattern_values[1];
+    let soft = exp2(lfp);
+    switch (params.pattern.x) {
+        // perlin: stretch, roughness, contrast, threshold
+        case 1u: {
+            let n = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 0u, 0.0, lfp);
+            return 1.0 / (1.0 + exp(-w0.z * (n - w0.w)));
+        }
+        // turbulence: stretch, roughness, contrast
+        case 2u: {
+            let t = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 1u, 0.0, lfp);
+            return 1.0 - exp(-w0.z * t);
+        }
+        // ridged: stretch, roughness, sharpness
+        case 3u: {
+            return octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 2u, w0.z, lfp);
+        }
+        // grid: aspect, mortar, bevel, variation
+        case 4u: {
+            let x = q.x / w0.x;
+            let ix = floor(x);
+            let iy = floor(q.y);
+            let d = joint_distance(x - ix, q.y - iy, w0.x);
+            let shade = 1.0 - w0.w * cell_hash(i32(ix), i32(iy), 0u);
+            return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;
+        }
+        // brick: aspect, mortar, row_offset, jitter, bevel, variation
+        case 5u: {
+            let iy = floor(q.y);
+            let shift = iy * w0.z + w0.w * (cell_hash(0, i32(iy), 1u) - 0.5);
+            let x = q.x / w0.x + shift;
+            let ix = floor(x);
+            let d = joint_distance(x - ix, q.y - iy, w0.x);
+            let shade = 1.0 - w1.y * cell_hash(i32(ix), i32(iy), 0u);
+            return soft_step(0.5 * w0.y, max(w1.x, soft), d) * shade;
+        }
+        // cells: jitter, mortar, bevel, variation, stretch
+        case 6u: {
+            let p = vec2<f32>(q.x / w1.x, q.y);
+            let ix = floor(p.x);
+            let iy = floor(p.y);
+            let f = vec2<f32>(p.x - ix, p.y - iy);
+            var f1 = 1e9;
+            var f2 = 1e9;
+            var id = vec2<i32>(0, 0);
+            for (var dy = -1; dy <= 1; dy++) {
+                for (var dx = -1; dx <= 1; dx++) {
+                    let cx = i32(ix) + dx;
+                    let cy = i32(iy) + dy;
+                    let px = f32(dx) + 0.5 + w0.x * (cell_hash(cx, cy, 0u) - 0.5);
+                    let py = f32(dy) + 0.5 + w0.x * (cell_hash(cx, cy, 1u) - 0.5);
+                    let ex = px - f.x;
+                    let ey = py - f.y;
+                    let d = ex * ex + ey * ey;
+                    if (d < f1) {
+                        f2 = f1;
+                        f1 = d;
+                        id = vec2<i32>(cx, cy);
+                    } else if (d < f2) {
+                        f2 = d;
+                    }
+                }
+            }
+            let edge = 0.5 * (sqrt(f2) - sqrt(f1));
+            let shade = 1.0 - w0.w * cell_hash(id.x, id.y, 2u);
+            return soft_step(0.5 * w0.y, max(w0.z, soft), edge) * shade;
+        }
+        // planks: length, gap, bevel, variation, grain
+        case 7u: {
+            let iy = floor(q.y);
+            let x = q.x / w0.x + cell_hash(0, i32(iy), 1u);
+            let ix = floor(x);
+            let d = joint_distance(x - ix, q.y - iy, w0.x);
+            let n = octaves(vec3<f32>(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0);
+            let shade = (1.0 - w0.w * cell_hash(i32(ix), i32(iy), 0u))
+                * (1.0 - w1.x * (0.5 + 0.5 * tanh(n)));
+            return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;
+        }
+        // wood lines: stretch, distortion, sharpness, roughness
+        case 8u: {
+            let n = octaves(vec3<f32>(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0, lfp - 2.0);
+            let v = q.y + w0.y * n;
+            return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), w0.z);
+        }
+        // rings: distortion, sharpness, roughness, stretch
+        case 9u: {
+            let p = vec3<f32>(q.x / w0.w, q.y, q.z);
+            let n = octaves(vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0);
+            let r = sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
+            return pow(max(0.5 + 0.5 * sin(6.2831855 * r), 1e-6), w0.y);
+        }
+        default: {
+            return 0.0;
+        }
+    }
+}
+
+fn ramp(s: f32) -> vec3<f32> {
+    let n = params.pattern.y;
+    if (s <= params.ramp[0].w) {
+        return params.ramp[0].xyz;
+    }
+    for (var i = 1u; i < n; i++) {
+        if (s < params.ramp[i].w) {
+            let a = params.ramp[i - 1u];
+            let b = params.ramp[i];
+            let t = (s - a.w) / (b.w - a.w);
+            return a.xyz + (b.xyz - a.xyz) * t;
+        }
+    }
+    return params.ramp[n - 1u].xyz;
+}
