@@ -8,9 +8,11 @@
 
 pub mod analyze;
 pub mod colour;
+pub mod db;
 pub mod error;
 pub mod evaluate;
 pub mod export;
+pub mod gabor;
 pub mod histogram;
 pub mod input;
 pub mod morph;
@@ -18,6 +20,7 @@ pub mod noise;
 pub mod params;
 pub mod pattern;
 pub mod render;
+pub mod retrieve;
 pub mod rng;
 pub mod seamless;
 pub mod solid;

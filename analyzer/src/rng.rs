@@ -20,6 +20,8 @@ pub mod stream {
     pub const PATTERN: u32 = 0x7061_7474;
     /// Per-cell randomness of the cell patterns (brick shades, cell centres, plank staggers).
     pub const CELLS: u32 = 0x6365_6c6c;
+    /// Parameter samples of the retrieval database.
+    pub const DB: u32 = 0x6462_6462;
 }
 
 /// PCG-RXS-M-XS 32 as a hash of one `u32`.

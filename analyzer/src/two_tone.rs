@@ -114,6 +114,27 @@ impl TwoTone {
         }
     }
 
+    /// The structure map of another image on this tone line: each pixel's projection onto
+    /// `tone0 + s·(tone1 − tone0)`, clamped to [0, 1] (0 everywhere when the tones coincide).
+    /// Scores a rendered candidate against the photo these tones came from.
+    pub fn project(&self, image: &Photo) -> Vec<f32> {
+        let d = [0, 1, 2].map(|k| (self.tones[1][k] - self.tones[0][k]) as f64);
+        let len2: f64 = d.iter().map(|v| v * v).sum();
+        image
+            .pixels
+            .iter()
+            .map(|c| {
+                if len2 < 1e-12 {
+                    return 0.0;
+                }
+                let t: f64 = (0..3)
+                    .map(|k| (c[k] as f64 - self.tones[0][k] as f64) * d[k])
+                    .sum();
+                (t / len2).clamp(0.0, 1.0) as f32
+            })
+            .collect()
+    }
+
     /// The colour of structure value `s`: `tone0 + s·(tone1 − tone0)`.
     pub fn colour(&self, s: f32) -> [f32; 3] {
         [0, 1, 2].map(|k| self.tones[0][k] + s * (self.tones[1][k] - self.tones[0][k]))

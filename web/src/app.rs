@@ -1609,6 +1609,11 @@ impl ProctexApp {
                 egui::Slider::new(&mut params.colour.contrast, 0.0..=MAX_CONTRAST).text("contrast"),
             );
             rects.push(("contrast".into(), r));
+            if let Model::Structured(m) = &mut params.model {
+                structure_controls(ui, m, &mut rects);
+                ui.separator();
+                ui.label("Residual noise (what the structure does not explain)");
+            }
             let model = params.model.noise_layer_mut();
             let r = ui.checkbox(&mut model.histogram.enabled, "histogram matching");
             rects.push(("histogram".into(), r));
@@ -2081,6 +2086,68 @@ fn ui_fonts() -> egui::FontDefinitions {
 }
 
 /// A positive number in a few characters: 4, 6.8, 1024.
+/// The structured model's controls: family, placement, every structural value (ranges and
+/// tooltips from the spec table) and the colour ramp.
+fn structure_controls(
+    ui: &mut egui::Ui,
+    m: &mut proctex::params::StructuredModel,
+    rects: &mut Vec<(String, egui::Response)>,
+) {
+    use proctex::pattern::{Pattern, PatternKind};
+    ui.separator();
+    ui.label("Structure");
+    let pat = &mut m.pattern;
+    let mut kind = pat.kind;
+    let r = egui::ComboBox::from_label("pattern")
+        .selected_text(kind.name())
+        .show_ui(ui, |ui| {
+            for k in PatternKind::ALL {
+                ui.selectable_value(&mut kind, k, k.name());
+            }
+        })
+        .response;
+    rects.push(("pattern.kind".into(), r));
+    if kind != pat.kind {
+        // Another family at its defaults, in the same place.
+        let (scale, rotation) = (pat.scale, pat.rotation_deg);
+        *pat = Pattern::new(kind, scale);
+        pat.rotation_deg = rotation;
+    }
+    let r = ui.add(
+        egui::Slider::new(&mut pat.scale, 1.0..=512.0)
+            .logarithmic(true)
+            .text("pattern scale (texels)"),
+    );
+    rects.push(("pattern.scale".into(), r));
+    let r =
+        ui.add(egui::Slider::new(&mut pat.rotation_deg, -180.0..=180.0).text("pattern rotation °"));
+    rects.push(("pattern.rotation".into(), r));
+    let mut values = pat.vector();
+    for (spec, v) in pat.kind.specs().iter().zip(values.iter_mut()) {
+        let r = ui
+            .add(egui::Slider::new(v, spec.min..=spec.max).text(spec.name))
+            .on_hover_text(spec.doc);
+        rects.push((format!("pattern.{}", spec.name), r));
+    }
+    if values != pat.vector() {
+        pat.set_vector(&values);
+    }
+    ui.label("Colour ramp along the structure value");
+    let n = m.ramp.len();
+    for i in 0..n {
+        let lo = if i == 0 { 0.0 } else { m.ramp[i - 1].at };
+        let hi = if i + 1 == n { 1.0 } else { m.ramp[i + 1].at };
+        let stop = &mut m.ramp[i];
+        ui.horizontal(|ui| {
+            let r = ui.color_edit_button_rgb(&mut stop.rgb);
+            rects.push((format!("ramp.{i}.colour"), r));
+            let r = ui.add(egui::Slider::new(&mut stop.at, 0.0..=1.0).text("at"));
+            stop.at = stop.at.clamp(lo, hi);
+            rects.push((format!("ramp.{i}.at"), r));
+        });
+    }
+}
+
 fn short(v: f32) -> String {
     if (v - v.round()).abs() < 0.05 || v >= 100.0 {
         format!("{v:.0}")

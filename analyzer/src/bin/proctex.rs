@@ -5,11 +5,13 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use proctex::analyze::{Options, analyze_bytes};
+use proctex::analyze::{Options, analyze_photo_with};
+use proctex::db::Db;
 use proctex::evaluate::{distances, fidelity, synthesize};
 use proctex::input::{Crop, Photo};
 use proctex::params::Params;
 use proctex::render::{Image, View, period_texels, render};
+use proctex::retrieve::{ModelChoice, analyze_with_model};
 use proctex::spectrum::Estimator;
 use proctex::{Error, Result};
 
@@ -27,6 +29,7 @@ COMMANDS:
     fidelity  synthesis-vs-photo distance ratios (the README's fidelity table)
     morph     params JSON files → the texture a fraction t of the way through them
     export    params JSON → params JSON, or a complete WGSL or GLSL shader of the texture or a morph
+    build-db  the retrieval database of the structured models (analyzer/data/patterns.ptxdb)
     help      this text; `proctex <COMMAND> --help` for a command
 
 Exit codes: 0 success, 1 bad input or failed operation, 2 bad usage.";
@@ -47,7 +50,11 @@ OPTIONS:
     --knots K               inverse-CDF intervals (default 10, at most 32)
     --seed S                seed of the noise (default 1)
     --estimator E           deconvolved (default) or lagae (the paper's eq. 9)
-    --no-periodic           skip the periodic+smooth decomposition before the FFT";
+    --no-periodic           skip the periodic+smooth decomposition before the FFT
+    --model M               auto (default): the nearest of every candidate below, by texture
+                            distance; noise: Lagae's noise model; or a structured family:
+                            perlin, turbulence, ridged, grid, brick, cells, planks,
+                            wood_lines, rings (retrieved, then fitted)";
 
 const RENDER_HELP: &str = "\
 proctex render PARAMS.json -o OUT.png [OPTIONS]
@@ -96,6 +103,14 @@ proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
 Interpolates the textures (Lagae §8): everything linearly except the colour basis (quaternion
 slerp) and the scale (geometric); t in [0, 1] is spread evenly over the segments A→B→C…; the
 noise uses A's seed. Prints the params JSON (or writes OUT.json).";
+
+const BUILD_DB_HELP: &str = "\
+proctex build-db -o FILE
+
+Renders every structured model over its parameter space (320 samples per family, from the
+project's hash: deterministic) and writes their Gabor descriptors, quantised to a byte each:
+the database retrieval searches. The shipped one is analyzer/data/patterns.ptxdb, compiled into
+the library; rebuild it when a pattern or the descriptor changes (a test says when).";
 
 const EXPORT_HELP: &str = "\
 proctex export PARAMS.json [MORE.json...] --format json|wgsl|glsl [-o OUT]
@@ -300,6 +315,42 @@ fn cmd_export(mut a: Args) -> Result<()> {
     Ok(())
 }
 
+fn cmd_build_db(mut a: Args) -> Result<()> {
+    let mut out = None;
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{BUILD_DB_HELP}");
+                return Ok(());
+            }
+            "-o" | "--output" => out = Some(a.value(&arg)?),
+            f => return Err(usage(format!("build-db: unexpected argument `{f}`"))),
+        }
+    }
+    let out = out.ok_or_else(|| usage("build-db: -o FILE is required"))?;
+    let t = Instant::now();
+    let last = std::sync::atomic::AtomicUsize::new(0);
+    let db = Db::build(&|done, total| {
+        let pct = done * 100 / total;
+        if pct >= last.load(std::sync::atomic::Ordering::Relaxed) + 10 {
+            last.store(pct, std::sync::atomic::Ordering::Relaxed);
+            eprintln!("build-db: {pct} % ({done}/{total})");
+        }
+    });
+    let bytes = db.to_bytes();
+    std::fs::write(&out, &bytes).map_err(|e| Error::Io {
+        path: out.clone(),
+        message: e.to_string(),
+    })?;
+    println!(
+        "wrote {out}: {} models, {} bytes, in {:.1} s",
+        db.entries.len(),
+        bytes.len(),
+        t.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 fn cmd_morph(mut a: Args) -> Result<()> {
     let (mut files, mut t, mut out) = (Vec::new(), None, None);
     while let Some(arg) = a.next() {
@@ -336,8 +387,24 @@ fn cmd_morph(mut a: Args) -> Result<()> {
     Ok(())
 }
 
+/// Parses `--model M`.
+fn model_choice(a: &mut Args, flag: &str) -> Result<ModelChoice> {
+    let v = a.value(flag)?;
+    ModelChoice::parse(&v).ok_or_else(|| {
+        let kinds: Vec<&str> = proctex::pattern::PatternKind::ALL
+            .iter()
+            .map(|k| k.name())
+            .collect();
+        usage(format!(
+            "--model: `{v}` is not auto, noise or one of {}",
+            kinds.join(", ")
+        ))
+    })
+}
+
 fn cmd_analyze(mut a: Args) -> Result<()> {
     let mut o = Options::default();
+    let mut model = ModelChoice::Auto;
     let (mut photo, mut out, mut json) = (None, None, false);
     while let Some(arg) = a.next() {
         match arg.as_str() {
@@ -347,6 +414,7 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
             }
             "-o" | "--output" => out = Some(a.value(&arg)?),
             "--json" => json = true,
+            "--model" => model = model_choice(&mut a, &arg)?,
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("analyze: unknown option {f}"))),
             _ if photo.is_none() => photo = Some(arg),
@@ -356,9 +424,33 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
     let photo = photo.ok_or_else(|| usage("analyze: which photo? (proctex analyze PHOTO)"))?;
     let bytes = read(&photo)?;
     let t = Instant::now();
-    let analysis = analyze_bytes(&bytes, &o)?;
+    let photo = Photo::decode(&bytes)?;
+    let mut suggestions = Vec::new();
+    let analysis = analyze_photo_with(&photo, &o, |p, o| {
+        let (a, s) = analyze_with_model(Db::shipped(), p, o, model);
+        suggestions = s;
+        a
+    })?;
     let ms = t.elapsed().as_secs_f64() * 1e3;
     let text = analysis.params.to_json();
+    let mut ranking = String::new();
+    if !suggestions.is_empty() {
+        ranking += "candidates (texture distance, lower is nearer):\n";
+        for s in &suggestions {
+            ranking += &format!("  {:<11} {:.3}", s.name, s.distance);
+            if let Some((p, swapped)) = &s.pattern {
+                ranking += &format!(
+                    "  (retrieval {:.3}; scale {:.1}, rotation {:.1}°{})",
+                    s.retrieval_distance,
+                    p.scale,
+                    p.rotation_deg,
+                    if *swapped { ", tones swapped" } else { "" }
+                );
+            }
+            ranking += "\n";
+        }
+    }
+    let chosen = format!("model: {}\n", analysis.params.model.name());
     if let Some(path) = &out {
         std::fs::write(path, &text).map_err(|e| Error::Io {
             path: path.clone(),
@@ -367,8 +459,10 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
     }
     if json {
         println!("{text}");
+        eprint!("{ranking}{chosen}");
         eprintln!("{}", summary(&analysis.params, ms));
     } else {
+        print!("{ranking}{chosen}");
         println!("{}", summary(&analysis.params, ms));
         if let Some(path) = &out {
             println!("wrote {path}");
@@ -631,6 +725,7 @@ fn main() -> ExitCode {
         "fidelity" => cmd_fidelity(args),
         "morph" => cmd_morph(args),
         "export" => cmd_export(args),
+        "build-db" => cmd_build_db(args),
         "help" | "-h" | "--help" => {
             println!("{MAIN_HELP}");
             Ok(())

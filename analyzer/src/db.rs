@@ -1,0 +1,330 @@
+//! The retrieval database (two-tone paper §5): descriptors of every structured model over its
+//! parameter space, built by `proctex build-db`, shipped inside the library
+//! (`analyzer/data/patterns.ptxdb`), searched by nearest descriptor.
+//!
+//! Sampling: per pattern family [`SAMPLES_PER_KIND`] parameter sets, every structural value
+//! uniform in its range and the scale log-uniform in [`SCALES`] texels of the descriptor image,
+//! from the project's hash (stream [`rng::stream::DB`]), so the build is deterministic. Rotation
+//! is not sampled: [`Descriptor::rotated`] turns an entry by permuting its orientations, and
+//! the tone swap is matched by [`Descriptor::swapped`] of the query.
+//!
+//! Size (the paper's databases were 14 MB–2.9 GB): descriptors are quantised to one byte per
+//! entry between the database's per-entry minimum and maximum; the file is a few hundred KB.
+
+use crate::error::{Error, Result};
+use crate::gabor::{
+    Descriptor, FREQUENCIES, LEN, ORIENTATIONS, csf_weights, describe, descriptor_image,
+};
+use crate::pattern::{Pattern, PatternKind};
+use crate::rng;
+use crate::structure::structure_image;
+
+/// Parameter sets per pattern family.
+pub const SAMPLES_PER_KIND: usize = 320;
+/// Range of pattern scales sampled, texels of the descriptor image.
+pub const SCALES: [f32; 2] = [3.0, 40.0];
+/// Seed of the database's patterns (their noise tile and cell hashes).
+pub const DB_SEED: u32 = 1;
+const MAGIC: &[u8; 8] = b"PTXDB\x00\x00\x01";
+
+/// One model in the database.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Entry {
+    /// The pattern (rotation 0).
+    pub pattern: Pattern,
+    /// Its descriptor.
+    pub descriptor: Descriptor,
+}
+
+/// The database.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Db {
+    /// Every entry.
+    pub entries: Vec<Entry>,
+    /// Distance weight of every descriptor entry: contrast sensitivity over the entry's
+    /// variance across the database.
+    pub weights: Vec<f32>,
+}
+
+/// A retrieved model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Match {
+    /// Index into [`Db::entries`].
+    pub entry: usize,
+    /// The pattern, turned to the query's orientation (scale still in descriptor texels).
+    pub pattern: Pattern,
+    /// The photo's tones pair with the pattern reversed.
+    pub swapped: bool,
+    /// Weighted descriptor distance.
+    pub distance: f32,
+}
+
+/// The `i`-th sample of `kind`.
+pub fn sample(kind: PatternKind, i: usize) -> Pattern {
+    let k = kind.index();
+    let u = |j: usize| {
+        rng::uniform(
+            DB_SEED,
+            rng::stream::DB,
+            (k << 24) | ((i as u32) << 4) | j as u32,
+        ) as f32
+    };
+    let (lo, hi) = (SCALES[0].ln(), SCALES[1].ln());
+    let mut p = Pattern::new(kind, (lo + (hi - lo) * u(15)).exp());
+    let values: Vec<f32> = kind
+        .specs()
+        .iter()
+        .enumerate()
+        .map(|(j, s)| s.min + (s.max - s.min) * u(j))
+        .collect();
+    p.set_vector(&values);
+    p
+}
+
+/// The descriptor of a pattern rendered at one texel per pixel on the descriptor image.
+pub fn describe_pattern(p: &Pattern, seed: u32) -> Descriptor {
+    let n = crate::gabor::SIZE as u32;
+    describe(&structure_image(p, seed, n, n))
+}
+
+impl Db {
+    /// Builds the database (`progress(done, total)` after each entry; rayon on native).
+    pub fn build(progress: &(dyn Fn(usize, usize) + Sync)) -> Db {
+        let jobs: Vec<(PatternKind, usize)> = PatternKind::ALL
+            .into_iter()
+            .flat_map(|k| (0..SAMPLES_PER_KIND).map(move |i| (k, i)))
+            .collect();
+        let total = jobs.len();
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let one = |&(kind, i): &(PatternKind, usize)| {
+            let pattern = sample(kind, i);
+            let descriptor = describe_pattern(&pattern, DB_SEED);
+            progress(
+                done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
+                total,
+            );
+            Entry {
+                pattern,
+                descriptor,
+            }
+        };
+        #[cfg(not(target_arch = "wasm32"))]
+        let entries: Vec<Entry> = {
+            use rayon::prelude::*;
+            jobs.par_iter().map(one).collect()
+        };
+        #[cfg(target_arch = "wasm32")]
+        let entries: Vec<Entry> = jobs.iter().map(one).collect();
+        let mut db = Db {
+            entries,
+            weights: vec![],
+        };
+        // Quantise now, so that the built database equals the one read back from its bytes.
+        db = Db::from_bytes(&db.to_bytes()).expect("own bytes parse");
+        db
+    }
+
+    fn compute_weights(entries: &[Entry]) -> Vec<f32> {
+        let n = entries.len().max(1) as f64;
+        let csf = csf_weights();
+        (0..LEN)
+            .map(|i| {
+                let m = entries
+                    .iter()
+                    .map(|e| e.descriptor.0[i] as f64)
+                    .sum::<f64>()
+                    / n;
+                let var = entries
+                    .iter()
+                    .map(|e| (e.descriptor.0[i] as f64 - m).powi(2))
+                    .sum::<f64>()
+                    / n;
+                let block = ORIENTATIONS * FREQUENCIES;
+                let w = if i < 2 * block {
+                    csf[(i % block) % FREQUENCIES] as f64
+                } else {
+                    // The distribution entries weigh as much as one orientation's worth.
+                    (2 * FREQUENCIES) as f64 / crate::gabor::QUANTILES as f64
+                };
+                (w / (var + 1e-6)) as f32
+            })
+            .collect()
+    }
+
+    /// Weighted distance between two descriptors.
+    pub fn distance(&self, a: &Descriptor, b: &Descriptor) -> f32 {
+        a.0.iter()
+            .zip(&b.0)
+            .zip(&self.weights)
+            .map(|((x, y), w)| w * (x - y) * (x - y))
+            .sum::<f32>()
+            .sqrt()
+    }
+
+    /// For each pattern family, its best entry for the query (every rotation step, both tone
+    /// orientations), best first.
+    pub fn best_per_kind(&self, query: &Descriptor) -> Vec<Match> {
+        let queries = [query.clone(), query.swapped()];
+        let mut best: Vec<Option<Match>> = vec![None; PatternKind::ALL.len()];
+        for (i, e) in self.entries.iter().enumerate() {
+            let slot = e.pattern.kind.index() as usize - 1;
+            for shift in 0..ORIENTATIONS {
+                let turned = e.descriptor.rotated(shift);
+                for (swapped, q) in queries.iter().enumerate() {
+                    let d = self.distance(q, &turned);
+                    if best[slot].as_ref().is_none_or(|b| d < b.distance) {
+                        let mut pattern = e.pattern.clone();
+                        pattern.rotation_deg = shift as f32 * 180.0 / ORIENTATIONS as f32;
+                        best[slot] = Some(Match {
+                            entry: i,
+                            pattern,
+                            swapped: swapped == 1,
+                            distance: d,
+                        });
+                    }
+                }
+            }
+        }
+        let mut out: Vec<Match> = best.into_iter().flatten().collect();
+        out.sort_by(|a, b| a.distance.total_cmp(&b.distance));
+        out
+    }
+
+    /// The bytes of the database file.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut lo = vec![f32::INFINITY; LEN];
+        let mut hi = vec![f32::NEG_INFINITY; LEN];
+        for e in &self.entries {
+            for i in 0..LEN {
+                lo[i] = lo[i].min(e.descriptor.0[i]);
+                hi[i] = hi[i].max(e.descriptor.0[i]);
+            }
+        }
+        let mut out = Vec::new();
+        out.extend_from_slice(MAGIC);
+        out.extend_from_slice(&(self.entries.len() as u32).to_le_bytes());
+        out.extend_from_slice(&(LEN as u32).to_le_bytes());
+        for v in lo.iter().chain(&hi) {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        for e in &self.entries {
+            let p = &e.pattern;
+            out.push(p.kind.index() as u8);
+            out.extend_from_slice(&p.scale.to_le_bytes());
+            let values = p.vector();
+            out.push(values.len() as u8);
+            for v in values {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+            for i in 0..LEN {
+                let span = hi[i] - lo[i];
+                let q = if span > 0.0 {
+                    ((e.descriptor.0[i] - lo[i]) / span * 255.0).round()
+                } else {
+                    0.0
+                };
+                out.push(q as u8);
+            }
+        }
+        out
+    }
+
+    /// Reads a database file.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Db> {
+        let bad = |what: &str| Error::Decode(format!("pattern database: {what}"));
+        let mut at = 0usize;
+        let mut take = |n: usize| -> Result<&[u8]> {
+            let s = bytes.get(at..at + n).ok_or_else(|| bad("truncated"))?;
+            at += n;
+            Ok(s)
+        };
+        if take(8)? != MAGIC {
+            return Err(bad("not a proctex pattern database (or another version)"));
+        }
+        let u32_of = |s: &[u8]| u32::from_le_bytes(s.try_into().unwrap());
+        let f32_of = |s: &[u8]| f32::from_le_bytes(s.try_into().unwrap());
+        let count = u32_of(take(4)?) as usize;
+        if u32_of(take(4)?) as usize != LEN {
+            return Err(bad("descriptor length differs from this version's"));
+        }
+        let mut lo = vec![0.0f32; LEN];
+        let mut hi = vec![0.0f32; LEN];
+        for v in lo.iter_mut().chain(hi.iter_mut()) {
+            *v = f32_of(take(4)?);
+        }
+        let mut entries = Vec::with_capacity(count);
+        for _ in 0..count {
+            let kind_index = take(1)?[0] as usize;
+            let kind = *PatternKind::ALL
+                .get(kind_index.wrapping_sub(1))
+                .ok_or_else(|| bad("unknown pattern kind"))?;
+            let scale = f32_of(take(4)?);
+            let nv = take(1)?[0] as usize;
+            let mut values = Vec::with_capacity(nv);
+            for _ in 0..nv {
+                values.push(f32_of(take(4)?));
+            }
+            let q = take(LEN)?;
+            let descriptor = Descriptor(
+                (0..LEN)
+                    .map(|i| lo[i] + (hi[i] - lo[i]) * q[i] as f32 / 255.0)
+                    .collect(),
+            );
+            let mut pattern = Pattern::new(kind, scale);
+            pattern.set_vector(&values);
+            entries.push(Entry {
+                pattern,
+                descriptor,
+            });
+        }
+        let weights = Db::compute_weights(&entries);
+        Ok(Db { entries, weights })
+    }
+
+    /// The database shipped with this version (built by `proctex build-db`).
+    pub fn shipped() -> &'static Db {
+        use std::sync::OnceLock;
+        static DB: OnceLock<Db> = OnceLock::new();
+        DB.get_or_init(|| Db::from_bytes(SHIPPED).expect("the shipped database parses (tested)"))
+    }
+}
+
+/// The shipped database file.
+pub const SHIPPED: &[u8] = include_bytes!("../data/patterns.ptxdb");
+
+/// The query descriptor of a structure map of `w × h`, and how many of its texels one
+/// descriptor pixel covers.
+pub fn query(map: &[f32], w: usize, h: usize) -> (Descriptor, f32) {
+    let side = w.min(h);
+    (
+        describe(&descriptor_image(map, w, h)),
+        side as f32 / crate::gabor::SIZE as f32,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shipped file is what `proctex build-db` builds from this version's patterns and
+    /// descriptor (rebuild it with `proctex build-db -o analyzer/data/patterns.ptxdb`), it
+    /// round-trips, and it stays far below the 8 MB budget.
+    #[test]
+    fn shipped_database_is_fresh_and_small() {
+        let built = Db::build(&|_, _| {});
+        let bytes = built.to_bytes();
+        assert!(bytes.len() < 8_000_000, "{} bytes", bytes.len());
+        assert!(
+            bytes == SHIPPED,
+            "analyzer/data/patterns.ptxdb is stale: run `proctex build-db -o analyzer/data/patterns.ptxdb`"
+        );
+        assert_eq!(Db::from_bytes(&bytes).unwrap(), built);
+        assert_eq!(Db::shipped().entries.len(), 9 * SAMPLES_PER_KIND);
+    }
+
+    #[test]
+    fn corrupt_database_bytes_give_errors() {
+        assert!(Db::from_bytes(b"nope").is_err());
+        assert!(Db::from_bytes(&SHIPPED[..SHIPPED.len() / 2]).is_err());
+    }
+}
