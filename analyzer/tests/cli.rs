@@ -27,6 +27,10 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
 #[test]
 fn help_everywhere() {
     for args in [
@@ -199,7 +203,14 @@ fn morph_prints_valid_params_and_rejects_bad_t() {
 #[test]
 fn export_prints_json_wgsl_and_glsl() {
     let params = tmp("export.json");
-    let o = proctex(&["analyze", &sample("skimage_gravel_512.png"), "-o", &params]);
+    let o = proctex(&[
+        "analyze",
+        &sample("skimage_gravel_512.png"),
+        "--model",
+        "noise",
+        "-o",
+        &params,
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let o = proctex(&["export", &params, "--format", "wgsl"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -221,8 +232,29 @@ fn export_prints_json_wgsl_and_glsl() {
     assert_eq!(proctex(&["export", &params]).status.code(), Some(2));
     // Two files: the morph between them with t as a uniform; json takes one file.
     let other = tmp("export-other.json");
-    let o = proctex(&["analyze", &sample("stk_wood_planks1_256.png"), "-o", &other]);
+    let o = proctex(&[
+        "analyze",
+        &sample("stk_wood_planks1_256.png"),
+        "--model",
+        "noise",
+        "-o",
+        &other,
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // Auto picks a structured model for the planks; their morph shaders are not there yet,
+    // which the CLI says clearly (a non-zero exit), as it says the model it chose.
+    let planks = tmp("export-planks.json");
+    let o = proctex(&[
+        "analyze",
+        &sample("stk_wood_planks1_256.png"),
+        "-o",
+        &planks,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("model: planks"), "{}", stdout(&o));
+    let o = proctex(&["export", &params, &planks, "--format", "wgsl"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("not available yet"), "{}", stderr(&o));
     for (format, want) in [
         ("wgsl", "var<uniform> proctex_t"),
         ("glsl", "uniform float proctex_t;"),
