@@ -15,6 +15,7 @@ use crate::error::{Error, Result};
 use crate::gabor::{
     Descriptor, FREQUENCIES, LEN, ORIENTATIONS, csf_weights, describe, descriptor_image,
 };
+use crate::noise::Tile;
 use crate::pattern::{Pattern, PatternKind};
 use crate::rng;
 use crate::structure::structure_image;
@@ -81,10 +82,11 @@ pub fn sample(kind: PatternKind, i: usize) -> Pattern {
     p
 }
 
-/// The descriptor of a pattern rendered at one texel per pixel on the descriptor image.
-pub fn describe_pattern(p: &Pattern, seed: u32) -> Descriptor {
+/// The descriptor of a pattern rendered at one texel per pixel on the descriptor image, with
+/// the noise tile of `seed`.
+pub fn describe_pattern(p: &Pattern, seed: u32, tile: &Tile) -> Descriptor {
     let n = crate::gabor::SIZE as u32;
-    describe(&structure_image(p, seed, n, n))
+    describe(&structure_image(p, seed, tile, n, n))
 }
 
 impl Db {
@@ -96,9 +98,10 @@ impl Db {
             .collect();
         let total = jobs.len();
         let done = std::sync::atomic::AtomicUsize::new(0);
+        let tile = Tile::new_2d(DB_SEED);
         let one = |&(kind, i): &(PatternKind, usize)| {
             let pattern = sample(kind, i);
-            let descriptor = describe_pattern(&pattern, DB_SEED);
+            let descriptor = describe_pattern(&pattern, DB_SEED, &tile);
             progress(
                 done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
                 total,

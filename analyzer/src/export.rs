@@ -235,22 +235,20 @@ fn wgsl_of(subject: &Subject) -> String {
     } else {
         notes
     };
+    let entry = wgsl_entry(tp.solid, subject.is_morph());
     [
-        notes.as_str(),
-        &bake,
-        &header,
-        &morph,
-        proctex_shaders::ATLAS3,
-        proctex_shaders::TILE3_ATLAS,
-        proctex_shaders::NOISE,
-        proctex_shaders::HISTOGRAM,
-        proctex_shaders::HASH,
-        proctex_shaders::PATTERN,
-        proctex_shaders::TEXTURE,
-        proctex_shaders::BAKE,
-        passes,
-        &wgsl_entry(tp.solid, subject.is_morph()),
+        &[
+            notes.as_str(),
+            &bake,
+            &header,
+            &morph,
+            proctex_shaders::ATLAS3,
+            proctex_shaders::TILE3_ATLAS,
+        ][..],
+        &proctex_shaders::SHADING,
+        &[proctex_shaders::BAKE, passes, &entry],
     ]
+    .concat()
     .join("\n")
 }
 

@@ -15,12 +15,13 @@
 
 use crate::analyze::{Analysis, Options, analyze_prepared};
 use crate::db::{Db, query};
-use crate::gabor::{describe, descriptor_image};
+use crate::gabor::{Descriptor, describe, descriptor_image};
 use crate::input::Photo;
+use crate::noise::Tile;
 use crate::params::Params;
 use crate::pattern::{Pattern, PatternKind};
-use crate::render::{View, render};
-use crate::structure::fit_structured;
+use crate::render::{Prepared, View, render_prepared};
+use crate::structure::{fit_structured, fit_structured_with};
 use crate::two_tone::{TwoTone, two_tone};
 
 /// Longer side of the photo copy the candidates are fitted and scored on.
@@ -64,14 +65,23 @@ pub struct Suggestion {
     pub preview: Params,
 }
 
-/// The texture distance of `params` (rendered at `photo`'s size) to `photo`, through the
-/// photo's two-tone line.
-pub fn texture_distance(db: &Db, photo: &Photo, tt: &TwoTone, params: &Params) -> f32 {
-    let (w, h) = (photo.width as usize, photo.height as usize);
-    let q = describe(&descriptor_image(&tt.structure, w, h));
-    let img = render(params, photo.width, photo.height, &View::default()).to_photo();
+/// The texture distance of `params` to the photo whose two-tone line is `tt` and whose
+/// descriptor is `query`: `params` rendered at the photo's size (with `tile`, its noise tile),
+/// projected on that line, described.
+pub fn texture_distance(
+    db: &Db,
+    tt: &TwoTone,
+    query: &Descriptor,
+    params: &Params,
+    tile: &Tile,
+) -> f32 {
+    let (w, h) = (tt.width, tt.height);
+    let img = render_prepared(&Prepared::new(params), tile, w, h, &View::default()).to_photo();
     let s = tt.project(&img);
-    db.distance(&q, &describe(&descriptor_image(&s, w, h)))
+    db.distance(
+        query,
+        &describe(&descriptor_image(&s, w as usize, h as usize)),
+    )
 }
 
 /// Every candidate for an analysis-size photo, nearest first: the best pattern of each family
@@ -82,21 +92,22 @@ pub fn suggest(db: &Db, photo: &Photo, opts: &Options) -> Vec<Suggestion> {
     let texels_per_small = photo.width as f32 / small.width as f32;
     let tt = two_tone(small);
     let (q, per_px) = query(&tt.structure, small.width as usize, small.height as usize);
+    let tile = Tile::new_2d(opts.seed);
     let matches = db.best_per_kind(&q);
     let mut out: Vec<Suggestion> = Vec::with_capacity(matches.len() + 1);
     let noise = analyze_prepared(small, opts).params;
     out.push(Suggestion {
         name: "noise",
         pattern: None,
-        distance: texture_distance(db, small, &tt, &noise),
+        distance: texture_distance(db, &tt, &q, &noise, &tile),
         retrieval_distance: 0.0,
         preview: noise,
     });
     for m in matches {
         let mut p = m.pattern.clone();
         p.scale *= per_px;
-        let fitted = fit_structured(small, &p, opts, m.swapped).params;
-        let distance = texture_distance(db, small, &tt, &fitted);
+        let fitted = fit_structured_with(small, &p, opts, m.swapped, &tile).params;
+        let distance = texture_distance(db, &tt, &q, &fitted, &tile);
         p.scale *= texels_per_small;
         out.push(Suggestion {
             name: p.kind.name(),

@@ -77,12 +77,17 @@ pub fn shell(pattern: Pattern, seed: u32, solid: bool) -> Params {
 }
 
 /// The pattern's structure values over a `width × height` image at one texel per pixel (pixel
-/// centres, as the renderers sample), row-major.
-pub fn structure_image(pattern: &Pattern, seed: u32, width: u32, height: u32) -> Vec<f32> {
-    let params = shell(pattern.clone(), seed, false);
-    let prep = Prepared::new(&params);
-    let tile = Tile::new_2d(seed);
-    structure_image_prepared(&prep, &tile, width, height)
+/// centres, as the renderers sample), row-major. `tile` is the 2D noise tile of `seed`
+/// (`Tile::new_2d(seed)`; passed in because generating it costs more than the image).
+pub fn structure_image(
+    pattern: &Pattern,
+    seed: u32,
+    tile: &Tile,
+    width: u32,
+    height: u32,
+) -> Vec<f32> {
+    let prep = Prepared::new(&shell(pattern.clone(), seed, false));
+    structure_image_prepared(&prep, tile, width, height)
 }
 
 /// [`structure_image`] with the prepared block and tile supplied.
@@ -109,10 +114,21 @@ pub fn structure_image_prepared(prep: &Prepared, tile: &Tile, width: u32, height
 
 /// Fits the ramp and residual of `pattern` to an analysis-size photo (see the module docs).
 pub fn fit_structured(photo: &Photo, pattern: &Pattern, opts: &Options, swapped: bool) -> Analysis {
+    fit_structured_with(photo, pattern, opts, swapped, &Tile::new_2d(opts.seed))
+}
+
+/// [`fit_structured`] with the noise tile of `opts.seed` supplied (to share it across fits).
+pub fn fit_structured_with(
+    photo: &Photo,
+    pattern: &Pattern,
+    opts: &Options,
+    swapped: bool,
+    tile: &Tile,
+) -> Analysis {
     let (w, h) = (photo.width, photo.height);
     let n = photo.pixels.len();
     let tt = two_tone(photo);
-    let s_img = structure_image(pattern, opts.seed, w, h);
+    let s_img = structure_image(pattern, opts.seed, tile, w, h);
 
     // Rank pairing: photo pixel of rank r ↔ pattern value of rank r.
     let mut s_sorted = s_img.clone();

@@ -50,10 +50,13 @@ pub fn params_private(init: Option<&str>) -> String {
     PARAMS.replace(PARAMS_UNIFORM, &decl)
 }
 
-/// The library every view shader starts with: params, the 3D tile, noise, histogram, hash,
-/// pattern, texture.
+/// What every texture shader holds after the params and its access to the 3D tile (`TILE3` in
+/// the app, `ATLAS3` + `TILE3_ATLAS` in exports): noise, histogram, hash, pattern, texture.
+pub const SHADING: [&str; 5] = [NOISE, HISTOGRAM, HASH, PATTERN, TEXTURE];
+
+/// The library every view shader starts with: params, the 3D tile, then [`SHADING`].
 pub fn texture_library() -> String {
-    [PARAMS, TILE3, NOISE, HISTOGRAM, HASH, PATTERN, TEXTURE].join("\n")
+    [&[PARAMS, TILE3][..], &SHADING].concat().join("\n")
 }
 
 /// The 2D plane view shader (entry points `vs_main`, `fs_main`).
@@ -104,18 +107,9 @@ pub fn bake3_shader(constants: &str) -> String {
 
 /// The plane view reading the 3D tile from a baked atlas, as exported solid textures do.
 pub fn plane_atlas_shader() -> String {
-    [
-        PARAMS,
-        ATLAS3,
-        TILE3_ATLAS,
-        NOISE,
-        HISTOGRAM,
-        HASH,
-        PATTERN,
-        TEXTURE,
-        PLANE,
-    ]
-    .join("\n")
+    [&[PARAMS, ATLAS3, TILE3_ATLAS][..], &SHADING, &[PLANE]]
+        .concat()
+        .join("\n")
 }
 
 /// The solid view shader (entry points `vs_solid`, `fs_solid`).
@@ -231,21 +225,20 @@ pub fn shaders() -> Vec<(&'static str, String)> {
         (
             "morph",
             [
-                params_private(None).as_str(),
-                "const MORPH_SEGMENT_COUNT: u32 = 1u;\n\
-                 const MORPH_SEGMENTS = array<MorphSegment, 1>(MorphSegment());\n\
-                 const MORPH_ENDS = array<Params, 2>(Params(), Params());\n\
-                 const MORPH_OFFSETS = array<vec4<f32>, 36>();",
-                MORPH,
-                ATLAS3,
-                TILE3_ATLAS,
-                NOISE,
-                HISTOGRAM,
-                HASH,
-                PATTERN,
-                TEXTURE,
-                PLANE,
+                &[
+                    params_private(None).as_str(),
+                    "const MORPH_SEGMENT_COUNT: u32 = 1u;\n\
+                     const MORPH_SEGMENTS = array<MorphSegment, 1>(MorphSegment());\n\
+                     const MORPH_ENDS = array<Params, 2>(Params(), Params());\n\
+                     const MORPH_OFFSETS = array<vec4<f32>, 36>();",
+                    MORPH,
+                    ATLAS3,
+                    TILE3_ATLAS,
+                ][..],
+                &SHADING,
+                &[PLANE],
             ]
+            .concat()
             .join("\n"),
         ),
     ]
