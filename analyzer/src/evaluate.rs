@@ -10,11 +10,14 @@
 //! The fidelity protocol ([`fidelity`]) synthesises from one patch of a photo and compares with
 //! another patch, relative to the distance between the two patches themselves.
 
-use crate::analyze::{Options, analyze_photo};
+use crate::analyze::{Analysis, Options};
 use crate::colour::pca;
+use crate::db::Db;
 use crate::error::Result;
+use crate::gabor::{describe, descriptor_image};
 use crate::input::{Crop, Photo};
 use crate::render::{View, render};
+use crate::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model};
 use crate::rng;
 use crate::spectrum::{fft2_real, ifft2, spectrum_real};
 
@@ -25,6 +28,24 @@ pub struct Distances {
     pub spectrum_db: f64,
     /// Sliced Wasserstein-1 colour distance.
     pub colour: f64,
+    /// Structure distance: the retrieval descriptor's weighted distance ([`structure_distance`]).
+    pub structure: f64,
+}
+
+impl Distances {
+    fn zip(self, o: Distances, f: impl Fn(f64, f64) -> f64) -> Distances {
+        Distances {
+            spectrum_db: f(self.spectrum_db, o.spectrum_db),
+            colour: f(self.colour, o.colour),
+            structure: f(self.structure, o.structure),
+        }
+    }
+
+    const ZERO: Distances = Distances {
+        spectrum_db: 0.0,
+        colour: 0.0,
+        structure: 0.0,
+    };
 }
 
 const RINGS_PER_OCTAVE: usize = 4;
@@ -113,7 +134,24 @@ pub fn colour_distance(a: &Photo, b: &Photo) -> f64 {
     total / dirs.len() as f64
 }
 
-/// Both distances.
+/// The structure distance: the weighted distance ([`Db::distance`] of the shipped database)
+/// between the Gabor descriptors ([`crate::gabor`]) of the two images' luminance, centre
+/// squares. Unlike the radially averaged spectrum it sees orientation (lines, rows, a running
+/// bond) and the shape of the distribution (thin dark joints), which is what structured models
+/// are for; it is not rotation invariant (two patches of one photo share their orientation).
+pub fn structure_distance(a: &Photo, b: &Photo) -> f64 {
+    let describe_lum = |p: &Photo| {
+        let lum: Vec<f32> = p
+            .pixels
+            .iter()
+            .map(|c| 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2])
+            .collect();
+        describe(&descriptor_image(&lum, p.width as usize, p.height as usize))
+    };
+    Db::shipped().distance(&describe_lum(a), &describe_lum(b)) as f64
+}
+
+/// The three distances.
 pub fn distances(a: &Photo, b: &Photo) -> Distances {
     let (sa, sb) = (radial_spectrum(a), radial_spectrum(b));
     let mut sum = 0.0;
@@ -132,6 +170,7 @@ pub fn distances(a: &Photo, b: &Photo) -> Distances {
             0.0
         },
         colour: colour_distance(a, b),
+        structure: structure_distance(a, b),
     }
 }
 
@@ -206,6 +245,8 @@ pub struct Fidelity {
     pub spectrum_ratio: f64,
     /// `synthesis.colour / halves.colour`.
     pub colour_ratio: f64,
+    /// `synthesis.structure / halves.structure`.
+    pub structure_ratio: f64,
     /// Mean distance between the random-phase floor ([`random_phase`]) of one patch and the
     /// other patch.
     pub floor: Distances,
@@ -213,12 +254,24 @@ pub struct Fidelity {
     pub floor_spectrum_ratio: f64,
     /// `floor.colour / halves.colour`.
     pub floor_colour_ratio: f64,
+    /// `floor.structure / halves.structure`.
+    pub floor_structure_ratio: f64,
 }
 
-/// Analyses and renders a texture of exactly the photo's pixel size (what `proctex synth`
-/// does).
+/// Analyses with the noise model and renders a texture of exactly the photo's pixel size.
 pub fn synthesize(photo: &Photo, opts: &Options) -> Result<Photo> {
-    let a = analyze_photo(photo, opts)?;
+    Ok(synthesize_model(photo, opts, ModelChoice::Noise, Refinement::NONE)?.0)
+}
+
+/// Analyses with the chosen model and renders a texture of exactly the photo's pixel size
+/// (what `proctex synth` does); also returns the analysis and the ranked suggestions.
+pub fn synthesize_model(
+    photo: &Photo,
+    opts: &Options,
+    choice: ModelChoice,
+    refinement: Refinement,
+) -> Result<(Photo, Analysis, Vec<Suggestion>)> {
+    let (a, suggestions) = analyze_photo_model(photo, opts, choice, refinement)?;
     let world_per_pixel = 1.0; // world units are photo pixels
     let img = render(
         &a.params,
@@ -229,7 +282,7 @@ pub fn synthesize(photo: &Photo, opts: &Options) -> Result<Photo> {
             ..View::default()
         },
     );
-    Ok(img.to_photo())
+    Ok((img.to_photo(), a, suggestions))
 }
 
 /// The fidelity protocol: quadrants top-left/bottom-left and top-right/bottom-right of the
@@ -238,7 +291,13 @@ pub fn synthesize(photo: &Photo, opts: &Options) -> Result<Photo> {
 /// the mean `d(A, B)`. (Quadrants stacked vertically, not the left and right halves: several
 /// game textures are 2×2 tilings with a half-tile offset whose right half is the left half
 /// shifted, which would make `d(A, B)` zero.)
-pub fn fidelity(photo: &Photo, opts: &Options, seeds: &[u32]) -> Result<Fidelity> {
+pub fn fidelity(
+    photo: &Photo,
+    opts: &Options,
+    choice: ModelChoice,
+    refinement: Refinement,
+    seeds: &[u32],
+) -> Result<Fidelity> {
     let (hw, hh) = (photo.width / 2, photo.height / 2);
     let quad = |x: u32, y: u32| photo.crop(Crop { x, y, w: hw, h: hh });
     let pairs = [
@@ -248,46 +307,35 @@ pub fn fidelity(photo: &Photo, opts: &Options, seeds: &[u32]) -> Result<Fidelity
             quad(photo.width - hw, photo.height - hh)?,
         ),
     ];
-    let (mut hs, mut hc) = (0.0, 0.0);
-    let (mut s, mut c, mut n) = (0.0, 0.0, 0.0);
-    let (mut fs, mut fc) = (0.0, 0.0);
+    let (mut halves, mut synthesis, mut floor) =
+        (Distances::ZERO, Distances::ZERO, Distances::ZERO);
+    let mut n = 0.0;
     for (a, b) in &pairs {
         let d = distances(a, b);
-        hs += d.spectrum_db / pairs.len() as f64;
-        hc += d.colour / pairs.len() as f64;
+        halves = halves.zip(d, |x, y| x + y / pairs.len() as f64);
         for &seed in seeds {
             let o = Options { seed, ..*opts };
             for (src, other) in [(a, b), (b, a)] {
-                let syn = synthesize(src, &o)?;
-                let d = distances(&syn, other);
-                s += d.spectrum_db;
-                c += d.colour;
-                let f = distances(&random_phase(src, seed), other);
-                fs += f.spectrum_db;
-                fc += f.colour;
+                let syn = synthesize_model(src, &o, choice, refinement)?.0;
+                synthesis = synthesis.zip(distances(&syn, other), |x, y| x + y);
+                floor = floor.zip(distances(&random_phase(src, seed), other), |x, y| x + y);
                 n += 1.0;
             }
         }
     }
-    let halves = Distances {
-        spectrum_db: hs,
-        colour: hc,
-    };
-    let synthesis = Distances {
-        spectrum_db: s / n,
-        colour: c / n,
-    };
-    let floor = Distances {
-        spectrum_db: fs / n,
-        colour: fc / n,
-    };
+    synthesis = synthesis.zip(Distances::ZERO, |x, _| x / n);
+    floor = floor.zip(Distances::ZERO, |x, _| x / n);
+    let ratio = |d: Distances| d.zip(halves, |x, y| x / y.max(1e-9));
+    let (r, fr) = (ratio(synthesis), ratio(floor));
     Ok(Fidelity {
         halves,
         synthesis,
-        spectrum_ratio: synthesis.spectrum_db / halves.spectrum_db.max(1e-9),
-        colour_ratio: synthesis.colour / halves.colour.max(1e-9),
+        spectrum_ratio: r.spectrum_db,
+        colour_ratio: r.colour,
+        structure_ratio: r.structure,
         floor,
-        floor_spectrum_ratio: floor.spectrum_db / halves.spectrum_db.max(1e-9),
-        floor_colour_ratio: floor.colour / halves.colour.max(1e-9),
+        floor_spectrum_ratio: fr.spectrum_db,
+        floor_colour_ratio: fr.colour,
+        floor_structure_ratio: fr.structure,
     })
 }

@@ -19,6 +19,7 @@ pub mod morph;
 pub mod noise;
 pub mod params;
 pub mod pattern;
+pub mod refine;
 pub mod render;
 pub mod retrieve;
 pub mod rng;

@@ -113,14 +113,41 @@ fn analyze_render_synth_evaluate() {
         "4",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // synth chooses the model as analyze does (auto) and says which.
+    assert!(stdout(&o).contains("candidates"), "{}", stdout(&o));
+    assert!(stdout(&o).contains("model: "), "{}", stdout(&o));
     let img = image::open(&syn).unwrap();
     assert_eq!((img.width(), img.height()), (150, 90));
+    let o = proctex(&[
+        "synth",
+        &sample("stk_wood_planks1_256.png"),
+        "-o",
+        &syn,
+        "--model",
+        "noise",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("model: noise"), "{}", stdout(&o));
+    let o = proctex(&[
+        "analyze",
+        &sample("stk_wood_planks1_256.png"),
+        "--model",
+        "brick",
+        "--refine",
+        "0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(
+        out.contains("model: brick") && !out.contains("refined"),
+        "{out}"
+    );
 
     let o = proctex(&["evaluate", &syn, &sample("stk_wood_planks1_256.png")]);
     assert!(o.status.success());
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
-        out.contains("spectrum_db") && out.contains("colour"),
+        out.contains("spectrum_db") && out.contains("colour") && out.contains("structure"),
         "{out}"
     );
 }

@@ -5,13 +5,13 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use proctex::analyze::{Options, analyze_photo_with};
+use proctex::analyze::Options;
 use proctex::db::Db;
-use proctex::evaluate::{distances, fidelity, synthesize};
+use proctex::evaluate::{distances, fidelity, synthesize_model};
 use proctex::input::{Crop, Photo};
 use proctex::params::Params;
 use proctex::render::{Image, View, period_texels, render};
-use proctex::retrieve::{ModelChoice, analyze_with_model};
+use proctex::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model};
 use proctex::spectrum::Estimator;
 use proctex::{Error, Result};
 
@@ -54,7 +54,9 @@ OPTIONS:
     --model M               auto (default): the nearest of every candidate below, by texture
                             distance; noise: Lagae's noise model; or a structured family:
                             perlin, turbulence, ridged, grid, brick, cells, planks,
-                            wood_lines, rings (retrieved, then fitted)";
+                            wood_lines, rings (retrieved, refined, then fitted)
+    --refine N              Nelder–Mead evaluations per family after retrieval (default 60;
+                            0: retrieval alone)";
 
 const RENDER_HELP: &str = "\
 proctex render PARAMS.json -o OUT.png [OPTIONS]
@@ -76,26 +78,30 @@ OPTIONS:
     --depth 8|16            bits per channel of the PNG (default 8)";
 
 const SYNTH_HELP: &str = "\
-proctex synth PHOTO -o OUT.png [--seed S] [analyze OPTIONS]
+proctex synth PHOTO -o OUT.png [--model M] [--seed S] [analyze OPTIONS]
 
-Analyses PHOTO and renders the texture at exactly PHOTO's pixel size (or the crop's), at the
-photo's scale. Accepts the options of `analyze`.";
+Analyses PHOTO with the model chosen as `analyze` does (--model auto by default; prints the
+ranking and the model) and renders the texture at exactly PHOTO's pixel size (or the crop's),
+at the photo's scale. Accepts the options of `analyze`.";
 
 const EVALUATE_HELP: &str = "\
 proctex evaluate A.png B.png [--json]
 
 Prints texture distances between A and B (any sizes):
     spectrum_db  RMS difference in dB of radially averaged luminance power spectra
-    colour       sliced Wasserstein-1 distance of the RGB distributions";
+    colour       sliced Wasserstein-1 distance of the RGB distributions
+    structure    weighted distance of the luminance's Gabor descriptors (orientation, scale and
+                 distribution of structure; the retrieval descriptor)";
 
 const FIDELITY_HELP: &str = "\
-proctex fidelity PHOTO... [--seeds N] [--json] [analyze OPTIONS]
+proctex fidelity PHOTO... [--seeds N] [--model M] [--json] [analyze OPTIONS]
 
 For each photo: splits it into left and right halves A and B, synthesises from each half
 (seeds 1..N, default 3) and compares with the other half. Prints d(A,B), the mean
 d(synthesis, other half), and their ratio (near 1: as close as another patch of the same
 material), and the floor: the same ratio for the patch's own spectrum with random phases,
-histogram-matched (the best any Gaussian model can do).";
+histogram-matched (the best any Gaussian model can do). --model as for `analyze`, but noise
+by default (the README's noise-only table).";
 
 const MORPH_HELP: &str = "\
 proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
@@ -388,6 +394,18 @@ fn cmd_morph(mut a: Args) -> Result<()> {
 }
 
 /// Parses `--model M`.
+/// `--refine N`: N Nelder–Mead evaluations for every family (0: retrieval alone).
+fn refinement_of(evaluations: usize) -> Refinement {
+    if evaluations == 0 {
+        Refinement::NONE
+    } else {
+        Refinement {
+            evaluations,
+            ..Refinement::default()
+        }
+    }
+}
+
 fn model_choice(a: &mut Args, flag: &str) -> Result<ModelChoice> {
     let v = a.value(flag)?;
     ModelChoice::parse(&v).ok_or_else(|| {
@@ -402,9 +420,39 @@ fn model_choice(a: &mut Args, flag: &str) -> Result<ModelChoice> {
     })
 }
 
+/// The ranked candidates, one per line (empty when there was no ranking).
+fn ranking_text(suggestions: &[Suggestion]) -> String {
+    let mut ranking = String::new();
+    if !suggestions.is_empty() {
+        ranking += "candidates (score = texture distance + structure margin, lower is nearer):\n";
+        for s in suggestions {
+            ranking += &format!("  {:<11} {:.3} = {:.3}", s.name, s.score, s.distance);
+            if s.score > s.distance {
+                ranking += &format!(" + {:.3}", s.score - s.distance);
+            }
+            if let Some((p, swapped)) = &s.pattern {
+                let refined = s
+                    .refined_distance
+                    .map(|d| format!(" → refined {d:.3}"))
+                    .unwrap_or_default();
+                ranking += &format!(
+                    "  (retrieval {:.3}{refined}; scale {:.1}, rotation {:.1}°{})",
+                    s.retrieval_distance,
+                    p.scale,
+                    p.rotation_deg,
+                    if *swapped { ", tones swapped" } else { "" }
+                );
+            }
+            ranking += "\n";
+        }
+    }
+    ranking
+}
+
 fn cmd_analyze(mut a: Args) -> Result<()> {
     let mut o = Options::default();
     let mut model = ModelChoice::Auto;
+    let mut refinement = Refinement::default();
     let (mut photo, mut out, mut json) = (None, None, false);
     while let Some(arg) = a.next() {
         match arg.as_str() {
@@ -415,6 +463,7 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
             "-o" | "--output" => out = Some(a.value(&arg)?),
             "--json" => json = true,
             "--model" => model = model_choice(&mut a, &arg)?,
+            "--refine" => refinement = refinement_of(a.parsed(&arg)?),
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("analyze: unknown option {f}"))),
             _ if photo.is_none() => photo = Some(arg),
@@ -425,31 +474,10 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
     let bytes = read(&photo)?;
     let t = Instant::now();
     let photo = Photo::decode(&bytes)?;
-    let mut suggestions = Vec::new();
-    let analysis = analyze_photo_with(&photo, &o, |p, o| {
-        let (a, s) = analyze_with_model(Db::shipped(), p, o, model);
-        suggestions = s;
-        a
-    })?;
+    let (analysis, suggestions) = analyze_photo_model(&photo, &o, model, refinement)?;
     let ms = t.elapsed().as_secs_f64() * 1e3;
     let text = analysis.params.to_json();
-    let mut ranking = String::new();
-    if !suggestions.is_empty() {
-        ranking += "candidates (texture distance, lower is nearer):\n";
-        for s in &suggestions {
-            ranking += &format!("  {:<11} {:.3}", s.name, s.distance);
-            if let Some((p, swapped)) = &s.pattern {
-                ranking += &format!(
-                    "  (retrieval {:.3}; scale {:.1}, rotation {:.1}°{})",
-                    s.retrieval_distance,
-                    p.scale,
-                    p.rotation_deg,
-                    if *swapped { ", tones swapped" } else { "" }
-                );
-            }
-            ranking += "\n";
-        }
-    }
+    let ranking = ranking_text(&suggestions);
     let chosen = format!("model: {}\n", analysis.params.model.name());
     if let Some(path) = &out {
         std::fs::write(path, &text).map_err(|e| Error::Io {
@@ -578,6 +606,8 @@ fn cmd_render(mut a: Args) -> Result<()> {
 
 fn cmd_synth(mut a: Args) -> Result<()> {
     let mut o = Options::default();
+    let mut model = ModelChoice::Auto;
+    let mut refinement = Refinement::default();
     let (mut photo, mut out) = (None, None);
     while let Some(arg) = a.next() {
         match arg.as_str() {
@@ -586,6 +616,8 @@ fn cmd_synth(mut a: Args) -> Result<()> {
                 return Ok(());
             }
             "-o" | "--output" => out = Some(a.value(&arg)?),
+            "--model" => model = model_choice(&mut a, &arg)?,
+            "--refine" => refinement = refinement_of(a.parsed(&arg)?),
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("synth: unknown option {f}"))),
             _ if photo.is_none() => photo = Some(arg),
@@ -600,7 +632,9 @@ fn cmd_synth(mut a: Args) -> Result<()> {
         None => decoded,
     };
     let o = Options { crop: None, ..o };
-    let syn = synthesize(&region, &o)?;
+    let (syn, analysis, suggestions) = synthesize_model(&region, &o, model, refinement)?;
+    print!("{}", ranking_text(&suggestions));
+    println!("model: {}", analysis.params.model.name());
     let img = Image {
         width: syn.width,
         height: syn.height,
@@ -642,13 +676,18 @@ fn cmd_evaluate(mut a: Args) -> Result<()> {
     if json {
         println!("{}", serde_json::to_string(&d).expect("serialisable"));
     } else {
-        println!("spectrum_db {:.4}\ncolour {:.5}", d.spectrum_db, d.colour);
+        println!(
+            "spectrum_db {:.4}\ncolour {:.5}\nstructure {:.4}",
+            d.spectrum_db, d.colour, d.structure
+        );
     }
     Ok(())
 }
 
 fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut o = Options::default();
+    let mut model = ModelChoice::Noise;
+    let mut refinement = Refinement::default();
     let mut files = Vec::new();
     let (mut nseeds, mut json) = (3u32, false);
     while let Some(arg) = a.next() {
@@ -658,6 +697,8 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
                 return Ok(());
             }
             "--seeds" => nseeds = a.parsed(&arg)?,
+            "--model" => model = model_choice(&mut a, &arg)?,
+            "--refine" => refinement = refinement_of(a.parsed(&arg)?),
             "--json" => json = true,
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("fidelity: unknown option {f}"))),
@@ -670,7 +711,7 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
     let seeds: Vec<u32> = (1..=nseeds).collect();
     if !json {
         println!(
-            "{:<32} {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}",
+            "{:<32} {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}",
             "photo",
             "dB(A,B)",
             "dB(S,B)",
@@ -679,12 +720,16 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
             "col(A,B)",
             "col(S,B)",
             "ratio",
+            "floor",
+            "str(A,B)",
+            "str(S,B)",
+            "ratio",
             "floor"
         );
     }
     for f in &files {
         let photo = load_photo(f)?;
-        let r = fidelity(&photo, &o, &seeds)?;
+        let r = fidelity(&photo, &o, model, refinement, &seeds)?;
         let name = Path::new(f)
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
@@ -693,7 +738,7 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
             println!("{}", serde_json::json!({ "photo": name, "result": r }));
         } else {
             println!(
-                "{:<32} {:>8.3} {:>8.3} {:>6.2} {:>7.2}   {:>8.4} {:>8.4} {:>6.2} {:>7.2}",
+                "{:<32} {:>8.3} {:>8.3} {:>6.2} {:>7.2}   {:>8.4} {:>8.4} {:>6.2} {:>7.2}   {:>8.3} {:>8.3} {:>6.2} {:>7.2}",
                 name,
                 r.halves.spectrum_db,
                 r.synthesis.spectrum_db,
@@ -702,7 +747,11 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
                 r.halves.colour,
                 r.synthesis.colour,
                 r.colour_ratio,
-                r.floor_colour_ratio
+                r.floor_colour_ratio,
+                r.halves.structure,
+                r.synthesis.structure,
+                r.structure_ratio,
+                r.floor_structure_ratio
             );
         }
     }

@@ -1,0 +1,119 @@
+//! Synthetic round trip of retrieval (the two-tone paper's protocol, Bourque & Dudek Fig. 3):
+//! each structured model rendered at random parameters, rotations, scales, tones and seeds
+//! (none of them the database's) → automatic model choice → the right family must win.
+
+use proctex::analyze::Options;
+use proctex::db::Db;
+use proctex::input::Photo;
+use proctex::params::Model;
+use proctex::pattern::{Pattern, PatternKind, RampStop};
+use proctex::render::{View, render};
+use proctex::retrieve::suggest;
+use proctex::rng;
+use proctex::structure::shell;
+
+/// Cases per family.
+const CASES: usize = 8;
+/// Side of the rendered query.
+const SIDE: u32 = 256;
+/// Stream of this test's random draws (not the database's).
+const STREAM: u32 = 0x7274_7269;
+
+fn draw(kind: PatternKind, case: usize, j: u32) -> f32 {
+    rng::uniform(7, STREAM, (kind.index() << 24) | ((case as u32) << 8) | j) as f32
+}
+
+/// The query image of one case and its pattern (scale in pixels of the query).
+fn case(kind: PatternKind, case: usize) -> (Photo, Pattern) {
+    let u = |j: u32| draw(kind, case, j);
+    // Scales the 128² descriptor image sees at 3–40 texels (the database's range), well inside.
+    let scale = (8.0f32.ln() + (60.0f32.ln() - 8.0f32.ln()) * u(100)).exp();
+    let mut p = Pattern::new(kind, scale);
+    let values: Vec<f32> = kind
+        .specs()
+        .iter()
+        .enumerate()
+        .map(|(j, s)| s.min + (s.max - s.min) * u(j as u32))
+        .collect();
+    p.set_vector(&values);
+    p.rotation_deg = 180.0 * u(101);
+    let mut params = shell(p.clone(), 1000 + case as u32, false);
+    // Two tones, at least 0.25 apart in luminance.
+    let dark = [u(102), u(103), u(104)].map(|v| 0.1 + 0.35 * v);
+    let light = [u(105), u(106), u(107)].map(|v| 0.55 + 0.35 * v);
+    if let Model::Structured(m) = &mut params.model {
+        m.ramp = vec![
+            RampStop { at: 0.0, rgb: dark },
+            RampStop {
+                at: 1.0,
+                rgb: light,
+            },
+        ];
+    }
+    params.colour.mean = [0, 1, 2].map(|c| 0.5 * (dark[c] + light[c]));
+    let img = render(&params, SIDE, SIDE, &View::default()).to_photo();
+    (img, p)
+}
+
+#[test]
+fn synthetic_round_trip_finds_the_right_family() {
+    let db = Db::shipped();
+    let opts = Options::default();
+    let mut winners = Vec::new();
+    let mut right = 0;
+    let mut right_r = 0;
+    let mut total = 0;
+    let mut lines = Vec::new();
+    for kind in PatternKind::ALL {
+        let mut got = Vec::new();
+        for c in 0..CASES {
+            let (img, p) = case(kind, c);
+            let s = suggest(db, &img, &opts);
+            let first = s[0].name;
+            winners.push(s[0].distance);
+            let by_retrieval = s
+                .iter()
+                .filter(|x| x.pattern.is_some())
+                .min_by(|a, b| {
+                    let d = |x: &proctex::retrieve::Suggestion| {
+                        x.refined_distance.unwrap_or(x.retrieval_distance)
+                    };
+                    d(a).total_cmp(&d(b))
+                })
+                .unwrap()
+                .name;
+            if by_retrieval == kind.name() {
+                right_r += 1;
+            }
+            total += 1;
+            if first == kind.name() {
+                right += 1;
+            }
+            got.push(format!("{first}({:.0}px,{:.0}°)", p.scale, p.rotation_deg));
+        }
+        lines.push(format!("{:<11} → {}", kind.name(), got.join(" ")));
+    }
+    for l in &lines {
+        println!("{l}");
+    }
+    println!("by retrieval distance: {right_r}/{total}");
+    winners.sort_by(f32::total_cmp);
+    let median = winners[winners.len() / 2];
+    let p90 = winners[winners.len() * 9 / 10];
+    println!(
+        "winner's texture distance to the query: median {median:.3}, 90th percentile {p90:.3}"
+    );
+    let rate = right as f32 / total as f32;
+    println!("right family: {right}/{total} = {:.0} %", 100.0 * rate);
+    // Measured (72 cases): 34 right (47 %), 42 right by refined retrieval distance alone;
+    // winners' texture distance median 2.76, 90th percentile 3.90. The target is 90 %;
+    // the misses are mostly between neighbouring families (brick → planks, rings ↔ wood
+    // lines, at scales where a 256² query shows few bricks or one arc of a ring). These bounds
+    // guard what is reached until then.
+    assert!(
+        rate >= 0.4,
+        "right family in {:.0} % of cases",
+        100.0 * rate
+    );
+    assert!(median <= 3.5 && p90 <= 5.0, "median {median}, p90 {p90}");
+}
