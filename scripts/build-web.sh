@@ -25,3 +25,7 @@ tools/node_modules/.bin/wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-f
     --enable-sign-ext --enable-mutable-globals \
     www/pkg/proctex_web_bg.wasm -o www/pkg/proctex_web_bg.wasm
 echo "www/pkg/proctex_web_bg.wasm: $(stat -c %s www/pkg/proctex_web_bg.wasm) bytes"
+# The pattern database (structured-model retrieval) is fetched by the worker, not embedded in
+# the wasm: it would more than double the download the app needs before its first frame.
+cp analyzer/data/patterns.ptxdb www/pkg/patterns.ptxdb
+echo "www/pkg/patterns.ptxdb: $(stat -c %s www/pkg/patterns.ptxdb) bytes"

@@ -37,6 +37,17 @@ worker.onmessage = (e) => {
     if (m.id === photoJob) wasm.analysisProgress(null, m.stage);
     return;
   }
+  // Model suggestions of the current photo or crop (unsolicited: they follow its analysis).
+  if (m.type === 'suggestProgress' || m.type === 'suggestions' || m.type === 'suggestError') {
+    if (m.id !== photoJob || !appRunning) return;
+    if (m.type === 'suggestProgress') wasm.suggestionProgress(m.done, m.total);
+    else if (m.type === 'suggestError') wasm.suggestionsFailed(m.message);
+    else {
+      lastSuggestions = { rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled };
+      wasm.suggestionsDone(m.rows, m.thumbs, m.cancelled, m.best ?? undefined);
+    }
+    return;
+  }
   const resolve = pending.get(m.id);
   pending.delete(m.id);
   if (resolve) resolve(m);
@@ -75,6 +86,7 @@ async function analysePhoto(msg, transfer, name) {
   return true;
 }
 let lastReport = null;
+let lastSuggestions = null;
 let lastTimings = null;
 
 async function loadImage(bytes, name = 'image') {
@@ -361,6 +373,13 @@ window.proctexHost = {
   loadSample: (name) => { window.proctex.loadSample(name); },
   analyseCrop: (x, y, w, h, seed) => { cropNext = { crop: [x, y, w, h], seed }; pumpCrop(); },
   modelStats: (params) => { statsNext = params; pumpStats(); },
+  adoptSuggestion: async (index) => {
+    const [, reply] = job({ type: 'adopt', index });
+    const m = await reply;
+    if (m.type === 'error') wasm.suggestionsFailed(m.message);
+    else wasm.suggestionAdopted(m.index, m.report);
+  },
+  cancelSuggestions: () => worker.postMessage({ type: 'cancelSuggest' }),
   downloadText,
   tileBegin,
   tileRows,
@@ -397,6 +416,9 @@ window.proctex = {
   shareLink: () => { const p = wasm.getParams(); return p ? shareLink(p) : null; },
   getPresets: () => wasm.getPresets() ?? null,
   lastTimings: () => lastTimings,
+  // The last ranked suggestions: rows (name, score, distance, retrieval, refined), the
+  // milliseconds from retrieval to ranking, whether Cancel cut the refinement.
+  lastSuggestions: () => lastSuggestions,
 };
 
 // Without WebGPU: say so, and show the CPU reference render of the sample's analysis instead

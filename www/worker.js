@@ -1,6 +1,8 @@
 // The analysis worker. It loads the same wasm as the page (only its pure functions: analyzeRgba,
-// modelStats, previewRgba) and does everything that takes long: decoding a photo file,
-// analysing it (or a crop of it), the model statistics for the plots, and the CPU preview.
+// Suggestions, modelStats, previewRgba) and does everything that takes long: decoding a photo
+// file, analysing it (or a crop of it), the automatic model choice (retrieval in the pattern
+// database, then refinement one model family per step), the model statistics for the plots,
+// and the CPU preview.
 //
 // Why a worker rather than splitting the work into slices on the UI thread: the expensive steps
 // are single calls (the browser's image decode of a 12 MP JPEG, rustfft over the analysis
@@ -49,6 +51,73 @@ async function analyseNew(id, name, bitmap, t0, decodeMs) {
     type: 'analysis', id, name, report, ms: performance.now() - t0, decodeMs,
     preview, pw, ph, width, height,
   }, [preview.buffer]);
+  await startSuggestions(id, [], 1);
+}
+
+// ---- Model suggestions ----
+// The pattern database is a file of its own (www/pkg/patterns.ptxdb, a few MB), fetched once.
+const dbReady = ready.then(async () => {
+  const r = await fetch(new URL('./pkg/patterns.ptxdb', import.meta.url));
+  if (!r.ok) throw new Error(`HTTP ${r.status}`);
+  return wasm.loadDatabase(new Uint8Array(await r.arrayBuffer()));
+});
+dbReady.catch(() => {}); // reported per photo, below
+
+// The running suggestion: { job, id, cancelled, t0 }. Refinement runs one model family per
+// queued step, so a new photo, a crop, the plots' statistics or Cancel get in between steps.
+let suggestion = null;
+
+async function startSuggestions(id, crop, seed) {
+  if (suggestion) suggestion.job.free();
+  suggestion = null;
+  try {
+    await dbReady;
+  } catch (e) {
+    postMessage({
+      type: 'suggestError', id,
+      message: 'Model suggestions are unavailable: the pattern database could not be loaded ' +
+        `(${e.message ?? e}); the noise model is shown.`,
+    });
+    return;
+  }
+  let job;
+  try {
+    job = new wasm.Suggestions(photo.rgba, photo.width, photo.height, new Uint32Array(crop), seed);
+  } catch (e) {
+    postMessage({ type: 'suggestError', id, message: `Model suggestions: ${e.message ?? e}` });
+    return;
+  }
+  const s = { job, id, cancelled: false, t0: performance.now() };
+  suggestion = s;
+  postMessage({ type: 'suggestProgress', id, done: 0, total: job.steps() });
+  scheduleStep(s);
+}
+
+function scheduleStep(s) {
+  // A macrotask first, so that messages that arrived meanwhile are queued before the step.
+  setTimeout(() => {
+    queue = queue.then(() => suggestStep(s)).catch((err) => {
+      postMessage({ type: 'suggestError', id: s.id, message: `Model suggestions: ${err.message ?? err}` });
+    });
+  }, 0);
+}
+
+function suggestStep(s) {
+  if (suggestion !== s) return; // superseded (and freed) by a newer photo or crop
+  if (!s.cancelled && s.job.done() < s.job.steps()) {
+    s.job.step();
+    postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
+    scheduleStep(s);
+    return;
+  }
+  const rows = s.job.rank();
+  const thumbs = s.job.thumbnails();
+  const first = JSON.parse(rows)[0];
+  const best = first && first.name !== 'noise' ? s.job.report(0) : null;
+  postMessage({
+    type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled,
+    ms: performance.now() - s.t0,
+  }, [thumbs.buffer]);
 }
 
 async function handle(m) {
@@ -96,6 +165,13 @@ async function handle(m) {
       const report = wasm.analyzeRgba(photo.rgba, photo.width, photo.height,
         new Uint32Array(m.crop), m.seed);
       postMessage({ type: 'analysis', id: m.id, name: photo.name, report, ms: performance.now() - t0 });
+      await startSuggestions(m.id, m.crop, m.seed);
+      return;
+    }
+    case 'adopt': {
+      if (!suggestion) throw new Error('no suggestions to adopt');
+      const report = suggestion.job.report(m.index);
+      postMessage({ type: 'adopted', id: m.id, index: m.index, report });
       return;
     }
     case 'stats': {
@@ -116,6 +192,11 @@ async function handle(m) {
 let queue = Promise.resolve();
 onmessage = (e) => {
   const m = e.data;
+  if (m.type === 'cancelSuggest') {
+    // Not queued: the running refinement sees it before its next step.
+    if (suggestion) suggestion.cancelled = true;
+    return;
+  }
   queue = queue.then(() => handle(m)).catch((err) => {
     postMessage({ type: 'error', id: m.id, message: String(err && err.message ? err.message : err) });
   });

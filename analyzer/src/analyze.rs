@@ -99,6 +99,26 @@ pub fn analyze_photo(photo: &Photo, opts: &Options) -> Result<Analysis> {
     analyze_photo_with(photo, opts, analyze_prepared)
 }
 
+/// The photo the analysis sees: `opts.crop` of `photo`, checked, reduced to `opts.size` (what
+/// [`analyze_photo_with`] hands its analysis).
+pub fn prepare_photo(photo: &Photo, opts: &Options) -> Result<Photo> {
+    let (region, reduced) = prepare_regions(photo, opts)?;
+    Ok(reduced.or(region).unwrap_or_else(|| photo.clone()))
+}
+
+/// The crop (`None`: the photo itself) and its reduction (`None`: no reduction needed).
+fn prepare_regions(photo: &Photo, opts: &Options) -> Result<(Option<Photo>, Option<Photo>)> {
+    opts.validate()?;
+    let cropped = match opts.crop {
+        Some(c) => Some(photo.crop(c)?),
+        None => None,
+    };
+    let region = cropped.as_ref().unwrap_or(photo);
+    region.check_min_size()?;
+    let reduced = region.reduced(opts.size);
+    Ok((cropped, reduced))
+}
+
 /// Crops and reduces `photo` as `opts` say, runs `analysis` on the result, and stamps the
 /// params with the world scale (one texel is one analysed pixel) and their provenance.
 pub fn analyze_photo_with(
@@ -106,17 +126,8 @@ pub fn analyze_photo_with(
     opts: &Options,
     analysis: impl FnOnce(&Photo, &Options) -> Analysis,
 ) -> Result<Analysis> {
-    opts.validate()?;
-    let cropped;
-    let region = match opts.crop {
-        Some(c) => {
-            cropped = photo.crop(c)?;
-            &cropped
-        }
-        None => photo,
-    };
-    region.check_min_size()?;
-    let reduced = region.reduced(opts.size);
+    let (region, reduced) = prepare_regions(photo, opts)?;
+    let region = region.as_ref().unwrap_or(photo);
     let reduced: &Photo = reduced.as_ref().unwrap_or(region);
     let mut analysis = analysis(reduced, opts);
     // One texel is one analysed pixel; in world units (photo pixels) that is this many.

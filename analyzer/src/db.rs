@@ -9,7 +9,10 @@
 //! the tone swap is matched by [`Descriptor::swapped`] of the query.
 //!
 //! Size (the paper's databases were 14 MB–2.9 GB): descriptors are quantised to one byte per
-//! entry between the database's per-entry minimum and maximum; the file is a few hundred KB.
+//! entry between the database's per-entry minimum and maximum: 2,560 models per family, 2.9 MB,
+//! built in about 75 s on 2 cores. Measured on the synthetic round trip (`tests/retrieval.rs`,
+//! 72 cases): with 320 per family (0.36 MB) the refined structure distance alone found the
+//! right family 42 times, with 2,560 47 times.
 
 use crate::error::{Error, Result};
 use crate::gabor::{
@@ -21,7 +24,7 @@ use crate::rng;
 use crate::structure::structure_image;
 
 /// Parameter sets per pattern family.
-pub const SAMPLES_PER_KIND: usize = 320;
+pub const SAMPLES_PER_KIND: usize = 2560;
 /// Range of pattern scales sampled, texels of the descriptor image.
 pub const SCALES: [f32; 2] = [3.0, 40.0];
 /// Seed of the database's patterns (their noise tile and cell hashes).

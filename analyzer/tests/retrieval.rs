@@ -89,14 +89,17 @@ fn synthetic_round_trip_finds_the_right_family() {
             if first == kind.name() {
                 right += 1;
             }
-            got.push(format!("{first}({:.0}px,{:.0}°)", p.scale, p.rotation_deg));
+            got.push(format!(
+                "{first}/{by_retrieval}({:.0}px,{:.0}°)",
+                p.scale, p.rotation_deg
+            ));
         }
         lines.push(format!("{:<11} → {}", kind.name(), got.join(" ")));
     }
     for l in &lines {
         println!("{l}");
     }
-    println!("by retrieval distance: {right_r}/{total}");
+    println!("by refined retrieval distance alone (no noise model): {right_r}/{total}");
     winners.sort_by(f32::total_cmp);
     let median = winners[winners.len() / 2];
     let p90 = winners[winners.len() * 9 / 10];
@@ -105,13 +108,14 @@ fn synthetic_round_trip_finds_the_right_family() {
     );
     let rate = right as f32 / total as f32;
     println!("right family: {right}/{total} = {:.0} %", 100.0 * rate);
-    // Measured (72 cases): 34 right (47 %), 42 right by refined retrieval distance alone;
-    // winners' texture distance median 2.76, 90th percentile 3.90. The target is 90 %;
-    // the misses are mostly between neighbouring families (brick → planks, rings ↔ wood
-    // lines, at scales where a 256² query shows few bricks or one arc of a ring). These bounds
-    // guard what is reached until then.
+    // Measured (72 cases, 2,560 database entries per family, families ranked by structure
+    // distance): 43 right (60 %; 34 with 320 entries and families ranked by texture distance),
+    // 47 right by refined structure distance alone; winners' texture distance median 2.82,
+    // 90th percentile 4.32. The target is 90 %; the misses are mostly between
+    // neighbouring families (brick → planks or grid, turbulence ↔ ridged ↔ perlin, rings with
+    // strong distortion → cells) and to the noise model. These bounds guard what is reached.
     assert!(
-        rate >= 0.4,
+        rate >= 0.55,
         "right family in {:.0} % of cases",
         100.0 * rate
     );

@@ -2,7 +2,7 @@
 // rendered by the bare host pages (www/host-wgsl.html: raw WebGPU; www/host-glsl.html: raw
 // WebGL2), and compared with the app's own view of the same world rectangle.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, grab, clickWidget, morphRockToGrass } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, clickWidget, morphRockToGrass, suggestionsFor } = require('./helpers');
 
 // The app's 2D view of world [0, size)² at one world unit per pixel, and the shader the app
 // copies with its "Copy <lang>" button (`button`: the widget's prefix, export or morph).
@@ -61,6 +61,19 @@ for (const [lang, hostPage] of HOSTS) {
     await openApp(page);
     const { app, src, offset } = await appViewAndSnippet(page, lang, size);
     expectSame(lang, app, await hostImage(page, hostPage, src, size, offset));
+  });
+}
+
+for (const [lang, hostPage] of HOSTS) {
+  test(`a structured model's exported ${lang.toUpperCase()} renders the app's view in the bare host page`, async ({ page }) => {
+    const size = 192;
+    await openApp(page);
+    // The brick sample's best suggestion is a structured model, adopted by default.
+    const s = await suggestionsFor(page, 'skimage_brick_512.png');
+    expect(s.adopted).toBe(0);
+    expect(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model.kind).toBe('structured');
+    const { app, src, offset } = await appViewAndSnippet(page, lang, size);
+    expectSame(`structured ${lang}`, app, await hostImage(page, hostPage, src, size, offset));
   });
 }
 

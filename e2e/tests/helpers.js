@@ -125,7 +125,25 @@ async function morphRockToGrass(page) {
   return { rock, grass };
 }
 
+// Loads a shipped sample and waits for its ranked suggestions.
+async function suggestionsFor(page, sample) {
+  const before = (await state(page)).analyses;
+  await page.evaluate((n) => window.proctex.loadSample(n), sample);
+  await page.waitForFunction((k) => {
+    window.proctex.requestRepaint();
+    const s = window.proctex.state();
+    return s.analyses > k && s.suggestions.length > 0 && !s.suggest_progress
+      && window.proctex.lastSuggestions();
+  }, before, { polling: 200, timeout: 120_000 });
+  await waitFrames(page, 3);
+  const s = await state(page);
+  const t = await page.evaluate(() => window.proctex.lastSuggestions());
+  console.log(`${sample}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
+    `(retrieval to ranking ${t.ms.toFixed(0)} ms)`);
+  return s;
+}
+
 module.exports = {
   expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender,
-  innerSquare, clickWidget, waitAnalyses, morphRockToGrass, ROOT,
+  innerSquare, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, ROOT,
 };

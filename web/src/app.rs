@@ -17,7 +17,7 @@ use proctex::render::{View, period_texels};
 use proctex::solid::{Orbit, Shape, SolidView};
 use wasm_bindgen::JsValue;
 
-use crate::jobs::{ImageStats, Report};
+use crate::jobs::{ImageStats, Report, SuggestionRow, THUMB_SIDE};
 use crate::presets::{MorphPreset, Preset, STORAGE_KEY, library_json, parse_library};
 use crate::renderer::{Pass, TextureRenderer};
 use crate::tile_export::{SeamlessCpu, SeamlessGpu, png_scanlines};
@@ -62,6 +62,23 @@ pub enum Command {
     ImportPresets(String),
     /// A built-in gallery preset (a shipped sample's analysis).
     GalleryPreset(String, Box<Params>),
+    /// The worker refined `done` of `total` families of the current photo's suggestions.
+    SuggestProgress { done: u32, total: u32 },
+    /// The ranked suggestions of the current photo (or crop).
+    Suggestions {
+        /// Rows, nearest first.
+        rows: Vec<SuggestionRow>,
+        /// `THUMB_SIDE²` RGBA8 thumbnails, concatenated in row order.
+        thumbnails: Vec<u8>,
+        /// The refinement was cancelled (families not reached keep their retrieved pattern).
+        cancelled: bool,
+        /// The first row's report when it is a structured model (adopted by default).
+        best: Option<Box<Report>>,
+    },
+    /// The worker fitted suggestion `index` (the user clicked it): adopt its report.
+    Adopted { index: usize, report: Box<Report> },
+    /// The suggestions could not be computed.
+    SuggestFailed(String),
     /// PNG tile export choices: side, bits (8 or 16), CPU even with a GPU.
     TileOptions {
         size: u32,
@@ -176,6 +193,14 @@ pub struct Snapshot {
     pub morph_playing: bool,
     /// The PNG tile export in progress: fraction done.
     pub tile_progress: Option<f32>,
+    /// The model suggestions, nearest first.
+    pub suggestions: Vec<SuggestionRow>,
+    /// Suggestions being refined: families done, in all.
+    pub suggest_progress: Option<[u32; 2]>,
+    /// Row of the suggestion the current params came from (`None`: edited, or none yet).
+    pub adopted: Option<usize>,
+    /// Why there are no suggestions, if they failed.
+    pub suggest_error: Option<String>,
     /// Undo/redo depths.
     pub undo: usize,
     /// Redo depth.
@@ -295,6 +320,24 @@ pub struct ProctexApp {
     tile_job: Option<TileJob>,
     /// The GPU device and queue (from eframe), for off-screen work such as the PNG tile.
     gpu: Option<(wgpu::Device, wgpu::Queue)>,
+    suggest: SuggestState,
+}
+
+/// The automatic model choice's list (issue 5): filled by the worker after each analysis.
+#[derive(Default)]
+struct SuggestState {
+    rows: Vec<SuggestionRow>,
+    thumbs: Vec<egui::TextureHandle>,
+    /// Families refined, in all, while the worker refines.
+    progress: Option<(u32, u32)>,
+    cancelled: bool,
+    /// Row the current params were adopted from.
+    adopted: Option<usize>,
+    /// Row being fitted by the worker after a click.
+    adopting: Option<usize>,
+    /// The params right after adoption (the row stays marked until they are edited).
+    adopted_params: Option<Params>,
+    error: Option<String>,
 }
 
 /// The PNG tile export's choices.
@@ -386,6 +429,7 @@ impl ProctexApp {
                 force_cpu: false,
             },
             tile_job: None,
+            suggest: SuggestState::default(),
             gpu: None,
             presets: PresetsState {
                 duration_s: 4.0,
@@ -502,6 +546,190 @@ impl ProctexApp {
         self.stats_requested = Some(report.params);
     }
 
+    /// The worker's ranked suggestions arrived: thumbnails become textures; the best is
+    /// adopted when it is a structured model and the params are still the analysis's (an edit
+    /// made while the worker refined is not overwritten).
+    fn suggestions(
+        &mut self,
+        ctx: &egui::Context,
+        rows: Vec<SuggestionRow>,
+        thumbnails: Vec<u8>,
+        cancelled: bool,
+        best: Option<Box<Report>>,
+    ) {
+        let side = THUMB_SIDE as usize;
+        let thumbs = thumbnails
+            .chunks_exact(side * side * 4)
+            .enumerate()
+            .map(|(i, px)| {
+                let image = egui::ColorImage::from_rgba_unmultiplied([side, side], px);
+                ctx.load_texture(
+                    format!("suggestion{i}"),
+                    image,
+                    egui::TextureOptions::LINEAR,
+                )
+            })
+            .collect();
+        let unedited = self.params.is_some() && self.params == self.analysed;
+        self.suggest = SuggestState {
+            rows,
+            thumbs,
+            progress: None,
+            cancelled,
+            ..SuggestState::default()
+        };
+        match best {
+            Some(report) if unedited => self.adopt(0, *report),
+            None if unedited && self.suggest.rows.first().is_some_and(|r| r.name == "noise") => {
+                // The noise model is first: the analysis already shown is it.
+                self.suggest.adopted = Some(0);
+                self.suggest.adopted_params = self.params.clone();
+            }
+            _ => {}
+        }
+    }
+
+    /// Makes suggestion `index`'s fitted params current: one undoable step; "Reset to
+    /// analysed" returns to them.
+    fn adopt(&mut self, index: usize, report: Report) {
+        if let Some(cur) = self.params.clone() {
+            self.undo.push(cur);
+            self.redo.clear();
+        }
+        self.presets.morph = None;
+        self.params = Some(report.params.clone());
+        self.committed = Some(report.params.clone());
+        self.analysed = Some(report.params.clone());
+        self.model_stats = Some((report.params.clone(), report.model));
+        self.stats_requested = Some(report.params.clone());
+        self.suggest.adopted = Some(index);
+        self.suggest.adopted_params = Some(report.params);
+    }
+
+    /// The row the current params came from, while they are unedited.
+    fn adopted_row(&self) -> Option<usize> {
+        self.suggest
+            .adopted
+            .filter(|_| self.params.is_some() && self.params == self.suggest.adopted_params)
+    }
+
+    /// The ranked list of models for the photo: thumbnails, scores, progress and Cancel while
+    /// the worker refines; a click adopts a row.
+    fn suggestions_panel(&mut self, ui: &mut egui::Ui) {
+        if let Some(e) = &self.suggest.error {
+            ui.colored_label(egui::Color32::from_rgb(240, 90, 70), e.as_str());
+        }
+        if let Some((done, total)) = self.suggest.progress {
+            ui.horizontal(|ui| {
+                let frac = if total > 0 {
+                    done as f32 / total as f32
+                } else {
+                    0.0
+                };
+                let r = ui.add(
+                    egui::ProgressBar::new(frac)
+                        .desired_width(150.0)
+                        .text(format!("refining {done}/{total} models")),
+                );
+                self.record("suggest.progress", &r);
+                let r = ui
+                    .button("Cancel")
+                    .on_hover_text("Stop refining; rank with what is refined so far");
+                self.record("suggest.cancel", &r);
+                if r.clicked() {
+                    host("cancelSuggestions", &[]);
+                }
+            });
+            ui.ctx()
+                .request_repaint_after(std::time::Duration::from_millis(100));
+        } else if self.suggest.rows.is_empty() && self.suggest.error.is_none() {
+            ui.label("Suggestions appear after the analysis.");
+        }
+        if self.suggest.cancelled {
+            ui.label("Refinement cancelled: unrefined models ranked by retrieval.");
+        }
+        let adopted = self.adopted_row();
+        let mut clicked = None;
+        // Compact tiles (thumbnail, name, score), a few per row, so that the list does not
+        // push the presets below the fold.
+        ui.horizontal_wrapped(|ui| {
+            ui.spacing_mut().item_spacing = egui::vec2(4.0, 4.0);
+            for i in 0..self.suggest.rows.len() {
+                let row = &self.suggest.rows[i];
+                let mut tip = format!(
+                    "{}: score {:.3} (lower is nearer)\ntexture distance {:.3}",
+                    row.name, row.score, row.distance
+                );
+                if let Some(r) = row.retrieval {
+                    tip += &format!("\nstructure distance: retrieval {r:.3}");
+                    if let Some(f) = row.refined {
+                        tip += &format!(" → refined {f:.3}");
+                    }
+                }
+                tip += if adopted == Some(i) {
+                    "\n(current model)"
+                } else {
+                    "\nclick to adopt"
+                };
+                let (rect, r) =
+                    ui.allocate_exact_size(egui::vec2(56.0, 72.0), egui::Sense::click());
+                let visuals = ui.visuals();
+                let fill = if adopted == Some(i) {
+                    Some(visuals.selection.bg_fill)
+                } else if r.hovered() {
+                    Some(visuals.widgets.hovered.bg_fill)
+                } else {
+                    None
+                };
+                let text = visuals.text_color();
+                let painter = ui.painter();
+                if let Some(f) = fill {
+                    painter.rect_filled(rect, 3.0, f);
+                }
+                if let Some(t) = self.suggest.thumbs.get(i) {
+                    let img = egui::Rect::from_min_size(
+                        rect.min + egui::vec2(6.0, 3.0),
+                        egui::vec2(44.0, 44.0),
+                    );
+                    egui::Image::new(t).paint_at(ui, img);
+                }
+                let font = egui::FontId::proportional(10.0);
+                let name = row.name.replace('_', " ");
+                painter.text(
+                    rect.center_bottom() - egui::vec2(0.0, 19.0),
+                    egui::Align2::CENTER_CENTER,
+                    name,
+                    font.clone(),
+                    text,
+                );
+                let score = if self.suggest.adopting == Some(i) {
+                    "fitting…".to_string()
+                } else {
+                    format!("{:.2}", row.score)
+                };
+                painter.text(
+                    rect.center_bottom() - egui::vec2(0.0, 7.0),
+                    egui::Align2::CENTER_CENTER,
+                    score,
+                    font,
+                    text,
+                );
+                let r = r.on_hover_text(tip);
+                self.record(format!("suggestion.{i}"), &r);
+                if r.clicked() && adopted != Some(i) {
+                    clicked = Some(i);
+                }
+            }
+        });
+        if let Some(i) = clicked {
+            self.suggest.adopting = Some(i);
+            if !host("adoptSuggestion", &[JsValue::from_f64(i as f64)]) {
+                self.suggest.adopting = None;
+                self.error = Some("Adopting a suggestion: the page's worker is unavailable".into());
+            }
+        }
+    }
+
     fn apply_commands(&mut self, ctx: &egui::Context) {
         let cmds: Vec<Command> = COMMANDS.with(|c| std::mem::take(&mut *c.borrow_mut()));
         for cmd in cmds {
@@ -520,6 +748,28 @@ impl ProctexApp {
                     ms,
                     preview,
                 } => self.analysed(ctx, *report, name, ms, preview),
+                Command::SuggestProgress { done, total } => {
+                    if done == 0 {
+                        // A new photo or crop: its list replaces the old one.
+                        self.suggest = SuggestState::default();
+                    }
+                    self.suggest.progress = Some((done, total));
+                }
+                Command::Suggestions {
+                    rows,
+                    thumbnails,
+                    cancelled,
+                    best,
+                } => self.suggestions(ctx, rows, thumbnails, cancelled, best),
+                Command::Adopted { index, report } => {
+                    self.suggest.adopting = None;
+                    self.adopt(index, *report);
+                }
+                Command::SuggestFailed(e) => {
+                    self.suggest.progress = None;
+                    self.suggest.adopting = None;
+                    self.suggest.error = Some(e);
+                }
                 Command::ModelStats(stats) => {
                     let (p, s) = *stats;
                     self.model_stats = Some((p, s));
@@ -691,6 +941,9 @@ impl ProctexApp {
             ui.label(note.as_str());
         }
         ui.separator();
+        egui::CollapsingHeader::new("Model suggestions")
+            .default_open(true)
+            .show(ui, |ui| self.suggestions_panel(ui));
         egui::CollapsingHeader::new("Presets and morph")
             .default_open(true)
             .show(ui, |ui| self.presets_panel(ui));
@@ -1960,6 +2213,10 @@ impl ProctexApp {
                 morph_playing: self.presets.playing,
                 undo: self.undo.len(),
                 redo: self.redo.len(),
+                suggestions: self.suggest.rows.clone(),
+                suggest_progress: self.suggest.progress.map(|(d, t)| [d, t]),
+                adopted: self.adopted_row(),
+                suggest_error: self.suggest.error.clone(),
                 tile_progress: self
                     .tile_job
                     .as_ref()

@@ -1,15 +1,21 @@
 //! The work the page's Web Worker does (see `www/worker.js`): analysing a photo (or a crop of
-//! it), the model's statistics for the plots, and the CPU preview for browsers without WebGPU.
+//! it), the automatic model choice in steps ([`SuggestJob`]), the model's statistics for the
+//! plots, and the CPU preview for browsers without WebGPU.
 //!
 //! Plain Rust over the analyzer, with no browser types, so that native tests run it. The
 //! worker calls it through the wasm-bindgen functions in `web.rs`; results travel to the UI
 //! thread as JSON.
 
-use proctex::analyze::{Options, analyze_photo};
+use proctex::analyze::{
+    Options, analyze_photo, analyze_photo_with, analyze_prepared, prepare_photo,
+};
+use proctex::db::Db;
 use proctex::evaluate::radial_spectrum;
 use proctex::input::Photo;
 use proctex::params::Params;
 use proctex::render::{View, render};
+use proctex::retrieve::{Refinement, Suggester, Suggestion};
+use proctex::structure::fit_structured;
 use serde::{Deserialize, Serialize};
 
 /// Bins of the channel histograms in the plots.
@@ -84,6 +90,51 @@ pub fn analyze_rgba(
             rgba.len()
         )));
     }
+    let photo = region(rgba, width, height, crop)?;
+    let opts = Options {
+        seed,
+        ..Options::default()
+    };
+    let analysis = analyze_photo(&photo, &opts)?;
+    report(&photo, &opts, analysis.params, width, height, crop)
+}
+
+/// The report of `params` analysed from `photo` (the crop region) of a `width × height` image.
+fn report(
+    photo: &Photo,
+    opts: &Options,
+    mut params: Params,
+    width: u32,
+    height: u32,
+    crop: Option<[u32; 4]>,
+) -> proctex::error::Result<Report> {
+    if let Some(s) = params.source.as_mut() {
+        s.width = width;
+        s.height = height;
+        s.crop = crop;
+    }
+    let reduced = photo.reduce_to(opts.size);
+    Ok(Report {
+        photo: image_stats(&reduced),
+        model: model_stats(&params),
+        params,
+    })
+}
+
+/// The `crop` (photo pixels; `None`: all) of an RGBA image, checked, as a photo.
+fn region(
+    rgba: &[u8],
+    width: u32,
+    height: u32,
+    crop: Option<[u32; 4]>,
+) -> proctex::error::Result<Photo> {
+    let expected = width as usize * height as usize * 4;
+    if rgba.len() != expected {
+        return Err(proctex::error::Error::Decode(format!(
+            "expected {expected} bytes of RGBA for {width}×{height}, got {}",
+            rgba.len()
+        )));
+    }
     let [x, y, w, h] = crop.unwrap_or([0, 0, width, height]);
     let inside = w > 0
         && h > 0
@@ -99,24 +150,149 @@ pub fn analyze_rgba(
         let start = (row as usize * width as usize + x as usize) * 4;
         region.extend_from_slice(&rgba[start..start + w as usize * 4]);
     }
-    let photo = Photo::from_rgba8(w, h, &region)?;
-    let opts = Options {
-        seed,
-        ..Options::default()
-    };
-    let analysis = analyze_photo(&photo, &opts)?;
-    let mut params = analysis.params;
-    if let Some(s) = params.source.as_mut() {
-        s.width = width;
-        s.height = height;
-        s.crop = crop;
+    Photo::from_rgba8(w, h, &region)
+}
+
+/// Side of the suggestion thumbnails.
+pub const THUMB_SIDE: u32 = 64;
+
+/// One row of the suggestion list, as the UI shows it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SuggestionRow {
+    /// "noise" or the pattern family.
+    pub name: String,
+    /// Ranking key (lower is nearer; see `retrieve::Suggester::suggestions`).
+    pub score: f32,
+    /// Texture distance of the fitted candidate to the photo.
+    pub distance: f32,
+    /// Structure distance after retrieval (patterns only).
+    pub retrieval: Option<f32>,
+    /// The same after refinement, when refined.
+    pub refined: Option<f32>,
+}
+
+/// The automatic model choice of one photo (or crop), run a family at a time so that the
+/// worker stays responsive between steps (a new photo or Cancel stops it), then ranked, and
+/// any suggestion fitted at analysis size on request.
+pub struct SuggestJob {
+    photo: Photo,
+    opts: Options,
+    width: u32,
+    height: u32,
+    crop: Option<[u32; 4]>,
+    suggester: Suggester,
+    ranked: Vec<Suggestion>,
+}
+
+impl std::fmt::Debug for SuggestJob {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SuggestJob")
+            .field("done", &self.suggester.done())
+            .field("steps", &self.suggester.steps())
+            .finish_non_exhaustive()
     }
-    let reduced = photo.reduce_to(opts.size);
-    Ok(Report {
-        photo: image_stats(&reduced),
-        model: model_stats(&params),
-        params,
-    })
+}
+
+impl SuggestJob {
+    /// Retrieval for `crop` of an RGBA image (as [`analyze_rgba`] analyses it).
+    pub fn new(
+        db: &Db,
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Option<[u32; 4]>,
+        seed: u32,
+    ) -> proctex::error::Result<SuggestJob> {
+        let photo = region(rgba, width, height, crop)?;
+        let opts = Options {
+            seed,
+            ..Options::default()
+        };
+        let reduced = prepare_photo(&photo, &opts)?;
+        let suggester = Suggester::new(db, &reduced, &opts, Refinement::default());
+        Ok(SuggestJob {
+            photo,
+            opts,
+            width,
+            height,
+            crop,
+            suggester,
+            ranked: Vec::new(),
+        })
+    }
+
+    /// Families to refine in all, and refined so far.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.suggester.done(), self.suggester.steps())
+    }
+
+    /// Refines the next family; returns whether any remain.
+    pub fn step(&mut self, db: &Db) -> bool {
+        self.suggester.step(db, &mut |_, _| true)
+    }
+
+    /// Ranks the candidates with the refinement done so far (the families not refined keep
+    /// their retrieved pattern).
+    pub fn rank(&mut self, db: &Db) -> Vec<SuggestionRow> {
+        self.ranked = self.suggester.suggestions(db);
+        self.ranked
+            .iter()
+            .map(|s| SuggestionRow {
+                name: s.name.to_string(),
+                score: s.score,
+                distance: s.distance,
+                retrieval: s.pattern.as_ref().map(|_| s.retrieval_distance),
+                refined: s.refined_distance,
+            })
+            .collect()
+    }
+
+    /// Thumbnails of the ranked candidates ([`THUMB_SIDE`]², RGBA8, concatenated in rank
+    /// order): each fitted candidate rendered over the whole analysed photo.
+    pub fn thumbnails(&self) -> Vec<u8> {
+        let side = THUMB_SIDE;
+        let mut out = Vec::with_capacity(self.ranked.len() * (side * side * 4) as usize);
+        for s in &self.ranked {
+            let p = &s.preview;
+            let extent = p
+                .source
+                .as_ref()
+                .map_or(256, |s| s.analysis_width.max(s.analysis_height));
+            let view = View {
+                origin: [0.0, 0.0],
+                pixel_size: p.transform.scale * extent as f32 / side as f32,
+                z: 0.0,
+            };
+            let img = render(p, side, side, &view);
+            out.extend(
+                img.to_rgb8()
+                    .chunks_exact(3)
+                    .flat_map(|c| [c[0], c[1], c[2], 255]),
+            );
+        }
+        out
+    }
+
+    /// The report of ranked candidate `i` fitted to the photo at analysis size (what adopting
+    /// it shows).
+    pub fn report(&self, i: usize) -> proctex::error::Result<Report> {
+        let s = self.ranked.get(i).ok_or_else(|| {
+            proctex::error::Error::Option(format!("no suggestion {i} (rank the photo first)"))
+        })?;
+        let analysis = analyze_photo_with(&self.photo, &self.opts, |p, o| match &s.pattern {
+            // The pattern's scale is in texels of the photo the suggester saw, which is `p`.
+            Some((pattern, swapped)) => fit_structured(p, pattern, o, *swapped),
+            None => analyze_prepared(p, o),
+        })?;
+        report(
+            &self.photo,
+            &self.opts,
+            analysis.params,
+            self.width,
+            self.height,
+            self.crop,
+        )
+    }
 }
 
 /// The CPU reference render of `params` as RGBA8 (the preview without WebGPU).
@@ -211,5 +387,36 @@ mod tests {
         }
         let preview = preview_rgba(&r.params, 32, 16);
         assert_eq!(preview.len(), 32 * 16 * 4);
+    }
+
+    #[test]
+    fn suggestions_in_steps_equal_the_cli_ranking() {
+        let (rgba, w, h) = sample();
+        let db = Db::shipped();
+        let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+        assert_eq!(job.progress(), (0, 9));
+        while job.step(db) {}
+        assert_eq!(job.progress(), (9, 9));
+        let rows = job.rank(db);
+        let opts = Options {
+            seed: 1,
+            ..Options::default()
+        };
+        let photo = Photo::from_rgba8(w, h, &rgba).unwrap();
+        let direct = proctex::retrieve::suggest(db, &prepare_photo(&photo, &opts).unwrap(), &opts);
+        assert_eq!(rows.len(), direct.len());
+        for (r, d) in rows.iter().zip(&direct) {
+            assert_eq!((r.name.as_str(), r.score), (d.name, d.score));
+        }
+        let side = THUMB_SIDE as usize;
+        assert_eq!(job.thumbnails().len(), rows.len() * side * side * 4);
+        let i = rows.iter().position(|r| r.name != "noise").unwrap();
+        let report = job.report(i).unwrap();
+        report.params.validate().unwrap();
+        assert!(matches!(
+            report.params.model,
+            proctex::params::Model::Structured(_)
+        ));
+        assert!(job.report(rows.len()).is_err());
     }
 }

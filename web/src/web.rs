@@ -83,6 +83,91 @@ pub fn preview_rgba(params_json: String, width: u32, height: u32) -> Result<Vec<
     Ok(jobs::preview_rgba(&p, width.min(2048), height.min(2048)))
 }
 
+thread_local! {
+    /// The pattern database the worker fetched (`loadDatabase`), for the worker's lifetime.
+    static DATABASE: std::cell::Cell<Option<&'static proctex::db::Db>> =
+        const { std::cell::Cell::new(None) };
+}
+
+fn database() -> Result<&'static proctex::db::Db, JsValue> {
+    DATABASE.with(|d| d.get()).ok_or_else(|| {
+        JsValue::from_str("the pattern database is not loaded: structured models are unavailable")
+    })
+}
+
+/// Worker job: reads the pattern database file (`patterns.ptxdb`, fetched by the worker rather
+/// than embedded in the wasm); returns its number of models; throws when the bytes are bad.
+#[wasm_bindgen(js_name = loadDatabase)]
+pub fn load_database(bytes: &[u8]) -> Result<usize, JsValue> {
+    let db = proctex::db::Db::from_bytes(bytes).map_err(js_error)?;
+    let n = db.entries.len();
+    DATABASE.with(|d| d.set(Some(Box::leak(Box::new(db)))));
+    Ok(n)
+}
+
+/// Worker job: the automatic model choice of a photo (or crop) in steps (see
+/// `jobs::SuggestJob`): `new` retrieves, each `step` refines one family, `rank` ranks.
+#[wasm_bindgen]
+#[derive(Debug)]
+pub struct Suggestions {
+    job: jobs::SuggestJob,
+}
+
+#[wasm_bindgen]
+impl Suggestions {
+    /// Retrieval for `crop` (`[x, y, w, h]` or empty) of an RGBA image; throws the error's
+    /// message (no database, bad crop).
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Vec<u32>,
+        seed: u32,
+    ) -> Result<Suggestions, JsValue> {
+        let crop = match crop.as_slice() {
+            [] => None,
+            [x, y, w, h] => Some([*x, *y, *w, *h]),
+            _ => return Err(JsValue::from_str("crop must be [x, y, w, h]")),
+        };
+        let job = jobs::SuggestJob::new(database()?, rgba, width, height, crop, seed)
+            .map_err(js_error)?;
+        Ok(Suggestions { job })
+    }
+
+    /// Families refined so far.
+    pub fn done(&self) -> usize {
+        self.job.progress().0
+    }
+
+    /// Families to refine.
+    pub fn steps(&self) -> usize {
+        self.job.progress().1
+    }
+
+    /// Refines the next family; returns whether any remain.
+    pub fn step(&mut self) -> Result<bool, JsValue> {
+        Ok(self.job.step(database()?))
+    }
+
+    /// Ranks the candidates (refined so far) and returns the rows as JSON.
+    pub fn rank(&mut self) -> Result<String, JsValue> {
+        let rows = self.job.rank(database()?);
+        serde_json::to_string(&rows).map_err(js_error)
+    }
+
+    /// The ranked candidates' thumbnails, `THUMB_SIDE²` RGBA8 each, concatenated.
+    pub fn thumbnails(&self) -> Vec<u8> {
+        self.job.thumbnails()
+    }
+
+    /// The report JSON of ranked candidate `i` fitted at analysis size.
+    pub fn report(&self, i: usize) -> Result<String, JsValue> {
+        let r = self.job.report(i).map_err(js_error)?;
+        serde_json::to_string(&r).map_err(js_error)
+    }
+}
+
 fn js_error(e: impl std::fmt::Display) -> JsValue {
     JsValue::from_str(&e.to_string())
 }
@@ -122,6 +207,63 @@ pub fn analysis_done(
         }),
     });
     Ok(())
+}
+
+/// The worker refined `done` of `total` families for the current photo's suggestions.
+#[wasm_bindgen(js_name = suggestionProgress)]
+pub fn suggestion_progress(done: u32, total: u32) {
+    send(Command::SuggestProgress { done, total });
+}
+
+/// The ranked suggestions (rows JSON), their thumbnails (`THUMB_SIDE²` RGBA8 each,
+/// concatenated), whether the refinement was cancelled, and the best candidate's report JSON
+/// when it is a structured model (adopted unless the user edited the params meanwhile).
+#[wasm_bindgen(js_name = suggestionsDone)]
+pub fn suggestions_done(
+    rows_json: String,
+    thumbnails: Vec<u8>,
+    cancelled: bool,
+    best_report: Option<String>,
+) -> Result<(), JsValue> {
+    let rows: Vec<jobs::SuggestionRow> = serde_json::from_str(&rows_json).map_err(js_error)?;
+    let side = jobs::THUMB_SIDE as usize;
+    if thumbnails.len() != rows.len() * side * side * 4 {
+        return Err(JsValue::from_str("suggestion thumbnails: wrong size"));
+    }
+    let best = match best_report {
+        Some(json) => {
+            let r: jobs::Report = serde_json::from_str(&json).map_err(js_error)?;
+            r.params.validate().map_err(js_error)?;
+            Some(Box::new(r))
+        }
+        None => None,
+    };
+    send(Command::Suggestions {
+        rows,
+        thumbnails,
+        cancelled,
+        best,
+    });
+    Ok(())
+}
+
+/// The worker fitted suggestion `index` (after the user clicked it): its report JSON.
+#[wasm_bindgen(js_name = suggestionAdopted)]
+pub fn suggestion_adopted(index: usize, report_json: String) -> Result<(), JsValue> {
+    let report: jobs::Report = serde_json::from_str(&report_json).map_err(js_error)?;
+    report.params.validate().map_err(js_error)?;
+    send(Command::Adopted {
+        index,
+        report: Box::new(report),
+    });
+    Ok(())
+}
+
+/// The suggestions could not be computed (no database, a failed job): the app says so; the
+/// noise model's analysis stands.
+#[wasm_bindgen(js_name = suggestionsFailed)]
+pub fn suggestions_failed(message: String) {
+    send(Command::SuggestFailed(message));
 }
 
 /// The model statistics the app asked for (`proctexHost.modelStats(params)`).

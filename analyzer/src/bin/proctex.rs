@@ -424,19 +424,20 @@ fn model_choice(a: &mut Args, flag: &str) -> Result<ModelChoice> {
 fn ranking_text(suggestions: &[Suggestion]) -> String {
     let mut ranking = String::new();
     if !suggestions.is_empty() {
-        ranking += "candidates (score = texture distance + structure margin, lower is nearer):\n";
+        ranking += "candidates, nearest first (score: a pattern's structure distance + margin; \
+                    the noise model's texture distance against the best pattern's):\n";
         for s in suggestions {
-            ranking += &format!("  {:<11} {:.3} = {:.3}", s.name, s.score, s.distance);
-            if s.score > s.distance {
-                ranking += &format!(" + {:.3}", s.score - s.distance);
-            }
+            ranking += &format!(
+                "  {:<11} score {:.3}  texture {:.3}",
+                s.name, s.score, s.distance
+            );
             if let Some((p, swapped)) = &s.pattern {
                 let refined = s
                     .refined_distance
                     .map(|d| format!(" → refined {d:.3}"))
                     .unwrap_or_default();
                 ranking += &format!(
-                    "  (retrieval {:.3}{refined}; scale {:.1}, rotation {:.1}°{})",
+                    "  (structure: retrieval {:.3}{refined}; scale {:.1}, rotation {:.1}°{})",
                     s.retrieval_distance,
                     p.scale,
                     p.rotation_deg,

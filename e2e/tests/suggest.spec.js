@@ -1,0 +1,99 @@
+// The automatic model choice in the app (issue 5): after each analysis the worker retrieves and
+// refines every structured model family, the app lists them ranked with thumbnails and scores,
+// adopts the best, and a click adopts another.
+const { test } = require('@playwright/test');
+const { expect, openApp, state, waitFrames, grab, innerSquare, clickWidget, suggestionsFor } = require('./helpers');
+
+const patternOf = (json) => {
+  const p = JSON.parse(json);
+  return p.model.kind === 'structured' ? p.model.pattern.kind : 'noise';
+};
+
+async function adopt(page, i) {
+  const before = await state(page);
+  await clickWidget(page, `suggestion.${i}`);
+  await page.waitForFunction((k) => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().adopted === k;
+  }, i, { polling: 100, timeout: 60_000 });
+  await waitFrames(page, 3);
+  expect((await state(page)).undo).toBe(before.undo + 1);
+}
+
+test('a brick photo ranks a brick-like model first and adopts it; a click adopts another', async ({ page }) => {
+  await openApp(page);
+  const s = await suggestionsFor(page, 'skimage_brick_512.png');
+  expect(['brick', 'planks', 'grid']).toContain(s.suggestions[0].name);
+  expect(s.suggestions.map((r) => r.name)).toContain('noise');
+  expect(s.suggestions.length).toBe(10);
+  expect(s.adopted).toBe(0);
+  expect(s.error).toBeNull();
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[0].name);
+
+  const square = innerSquare(s.widgets.texture, 192);
+  const first = await grab(page, square);
+  // Adopt the noise model, then another pattern family: the params and the image follow.
+  const noise = s.suggestions.findIndex((r) => r.name === 'noise');
+  await adopt(page, noise);
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe('noise');
+  const other = s.suggestions.findIndex((r, i) => i > 0 && r.name !== 'noise');
+  await adopt(page, other);
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[other].name);
+  const img = await grab(page, square);
+  let diff = 0;
+  for (let i = 0; i < img.data.length; i += 4) diff += Math.abs(img.data[i] - first.data[i]);
+  expect(diff / (img.data.length / 4)).toBeGreaterThan(2);
+});
+
+test('a gravel photo ranks the noise model first and keeps it', async ({ page }) => {
+  await openApp(page);
+  const s = await suggestionsFor(page, 'skimage_gravel_512.png');
+  expect(s.suggestions[0].name).toBe('noise');
+  expect(s.adopted).toBe(0);
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe('noise');
+});
+
+test("a structured model's sliders change the image", async ({ page }) => {
+  await openApp(page);
+  const s = await suggestionsFor(page, 'skimage_brick_512.png');
+  expect(s.suggestions[0].name).not.toBe('noise');
+  const square = innerSquare(s.widgets.texture, 192);
+  const before = await grab(page, square);
+  const [x, y, w, h] = s.widgets['pattern.scale'];
+  // Drag the scale slider's knob to the rail's left end (finer pattern).
+  const params = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  const scale0 = params.model.pattern.scale;
+  await page.mouse.move(x + 50, y + h / 2);
+  await page.mouse.down();
+  await page.mouse.move(x + 2, y + h / 2, { steps: 8 });
+  await page.mouse.up();
+  await waitFrames(page, 4);
+  const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(after.model.pattern.scale).toBeLessThan(scale0);
+  expect((await state(page)).adopted).toBeNull(); // edited: no row is the current model now
+  const img = await grab(page, square);
+  let diff = 0;
+  for (let i = 0; i < img.data.length; i += 4) diff += Math.abs(img.data[i] - before.data[i]);
+  expect(diff / (img.data.length / 4)).toBeGreaterThan(2);
+});
+
+test('Cancel stops the refinement and ranks what there is', async ({ page }) => {
+  await openApp(page);
+  await page.evaluate(() => window.proctex.loadSample('skimage_brick_512.png'));
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    const s = window.proctex.state();
+    return s.photo === 'skimage_brick_512.png' && s.suggest_progress && s.widgets['suggest.cancel'];
+  }, null, { polling: 50, timeout: 120_000 });
+  await clickWidget(page, 'suggest.cancel');
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    const s = window.proctex.state();
+    return s.suggestions.length > 0 && !s.suggest_progress;
+  }, null, { polling: 100, timeout: 60_000 });
+  const t = await page.evaluate(() => window.proctex.lastSuggestions());
+  expect(t.cancelled).toBe(true);
+  expect(t.rows.length).toBe(10);
+  // Some families kept their retrieved pattern (no refined distance).
+  expect(t.rows.filter((r) => r.retrieval !== null && r.refined === null).length).toBeGreaterThan(0);
+});
