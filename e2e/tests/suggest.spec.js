@@ -9,6 +9,13 @@ const patternOf = (json) => {
   return p.model.kind === 'structured' ? p.model.pattern.kind : 'noise';
 };
 
+// Mean absolute difference of the red channel of two grabs of the same rectangle.
+function meanDiff(a, b) {
+  let diff = 0;
+  for (let i = 0; i < a.data.length; i += 4) diff += Math.abs(a.data[i] - b.data[i]);
+  return diff / (a.data.length / 4);
+}
+
 async function adopt(page, i) {
   const before = await state(page);
   await clickWidget(page, `suggestion.${i}`);
@@ -39,10 +46,7 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   const other = s.suggestions.findIndex((r, i) => i > 0 && r.name !== 'noise');
   await adopt(page, other);
   expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[other].name);
-  const img = await grab(page, square);
-  let diff = 0;
-  for (let i = 0; i < img.data.length; i += 4) diff += Math.abs(img.data[i] - first.data[i]);
-  expect(diff / (img.data.length / 4)).toBeGreaterThan(2);
+  expect(meanDiff(await grab(page, square), first)).toBeGreaterThan(2);
 });
 
 test('a gravel photo ranks the noise model first and keeps it', async ({ page }) => {
@@ -71,10 +75,7 @@ test("a structured model's sliders change the image", async ({ page }) => {
   const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   expect(after.model.pattern.scale).toBeLessThan(scale0);
   expect((await state(page)).adopted).toBeNull(); // edited: no row is the current model now
-  const img = await grab(page, square);
-  let diff = 0;
-  for (let i = 0; i < img.data.length; i += 4) diff += Math.abs(img.data[i] - before.data[i]);
-  expect(diff / (img.data.length / 4)).toBeGreaterThan(2);
+  expect(meanDiff(await grab(page, square), before)).toBeGreaterThan(2);
 });
 
 test('Cancel stops the refinement and ranks what there is', async ({ page }) => {

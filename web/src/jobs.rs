@@ -83,13 +83,6 @@ pub fn analyze_rgba(
     crop: Option<[u32; 4]>,
     seed: u32,
 ) -> proctex::error::Result<Report> {
-    let expected = width as usize * height as usize * 4;
-    if rgba.len() != expected {
-        return Err(proctex::error::Error::Decode(format!(
-            "expected {expected} bytes of RGBA for {width}×{height}, got {}",
-            rgba.len()
-        )));
-    }
     let photo = region(rgba, width, height, crop)?;
     let opts = Options {
         seed,

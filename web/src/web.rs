@@ -59,12 +59,8 @@ pub fn analyze_rgba(
     crop: Vec<u32>,
     seed: u32,
 ) -> Result<String, JsValue> {
-    let crop = match crop.as_slice() {
-        [] => None,
-        [x, y, w, h] => Some([*x, *y, *w, *h]),
-        _ => return Err(JsValue::from_str("crop must be [x, y, w, h]")),
-    };
-    let report = jobs::analyze_rgba(rgba, width, height, crop, seed).map_err(js_error)?;
+    let report =
+        jobs::analyze_rgba(rgba, width, height, parse_crop(&crop)?, seed).map_err(js_error)?;
     serde_json::to_string(&report).map_err(js_error)
 }
 
@@ -125,11 +121,7 @@ impl Suggestions {
         crop: Vec<u32>,
         seed: u32,
     ) -> Result<Suggestions, JsValue> {
-        let crop = match crop.as_slice() {
-            [] => None,
-            [x, y, w, h] => Some([*x, *y, *w, *h]),
-            _ => return Err(JsValue::from_str("crop must be [x, y, w, h]")),
-        };
+        let crop = parse_crop(&crop)?;
         let job = jobs::SuggestJob::new(database()?, rgba, width, height, crop, seed)
             .map_err(js_error)?;
         Ok(Suggestions { job })
@@ -165,6 +157,15 @@ impl Suggestions {
     pub fn report(&self, i: usize) -> Result<String, JsValue> {
         let r = self.job.report(i).map_err(js_error)?;
         serde_json::to_string(&r).map_err(js_error)
+    }
+}
+
+/// A crop from JS: `[x, y, w, h]`, or empty for the whole photo.
+fn parse_crop(crop: &[u32]) -> Result<Option<[u32; 4]>, JsValue> {
+    match crop {
+        [] => Ok(None),
+        [x, y, w, h] => Ok(Some([*x, *y, *w, *h])),
+        _ => Err(JsValue::from_str("crop must be [x, y, w, h]")),
     }
 }
 
