@@ -941,12 +941,12 @@ impl ProctexApp {
             ui.label(note.as_str());
         }
         ui.separator();
-        egui::CollapsingHeader::new("Model suggestions")
-            .default_open(true)
-            .show(ui, |ui| self.suggestions_panel(ui));
         egui::CollapsingHeader::new("Presets and morph")
             .default_open(true)
             .show(ui, |ui| self.presets_panel(ui));
+        egui::CollapsingHeader::new("Model suggestions")
+            .default_open(true)
+            .show(ui, |ui| self.suggestions_panel(ui));
         egui::CollapsingHeader::new("Plots")
             .default_open(true)
             .show(ui, |ui| self.plots(ui));
