@@ -109,6 +109,13 @@ test('a 12-megapixel JPEG is analysed in the worker while frames keep coming', a
     // Frames are cheap with the trivial shader, so the progress indicator can be drawn (the
     // plane shader takes ~1.5 s a frame on the software adapter, see the benchmark).
     window.proctex.setFlatShader(true);
+    // Frames already queued with the plane shader take ~1 s each to drain; wait until the cheap
+    // frames flow (three in a row), so the probe below sees the frames the app draws meanwhile.
+    const f0 = window.proctex.state().frame;
+    for (let i = 0; i < 1000 && window.proctex.state().frame < f0 + 3; i++) {
+      window.proctex.requestRepaint();
+      await new Promise((r) => setTimeout(r, 10));
+    }
     // Main-thread liveness: the longest gap between 10 ms timer ticks.
     let longest = 0, last = performance.now(), sawProgress = false, sawBusy = false;
     const probe = setInterval(() => {
