@@ -170,30 +170,47 @@ impl Db {
     /// For each pattern family, its best entry for the query (every rotation step, both tone
     /// orientations), best first.
     pub fn best_per_kind(&self, query: &Descriptor) -> Vec<Match> {
+        let mut out: Vec<Match> = self
+            .top_per_kind(query, 1)
+            .into_iter()
+            .filter_map(|v| v.into_iter().next())
+            .collect();
+        out.sort_by(|a, b| a.distance.total_cmp(&b.distance));
+        out
+    }
+
+    /// For each pattern family (in [`PatternKind::ALL`] order), its `k` best entries for the
+    /// query, best first; each entry at its best rotation step and tone orientation.
+    pub fn top_per_kind(&self, query: &Descriptor, k: usize) -> Vec<Vec<Match>> {
         let queries = [query.clone(), query.swapped()];
-        let mut best: Vec<Option<Match>> = vec![None; PatternKind::ALL.len()];
+        let mut top: Vec<Vec<Match>> = vec![Vec::new(); PatternKind::ALL.len()];
         for (i, e) in self.entries.iter().enumerate() {
-            let slot = e.pattern.kind.index() as usize - 1;
+            let mut best: Option<Match> = None;
             for shift in 0..ORIENTATIONS {
                 let turned = e.descriptor.rotated(shift);
                 for (swapped, q) in queries.iter().enumerate() {
                     let d = self.distance(q, &turned);
-                    if best[slot].as_ref().is_none_or(|b| d < b.distance) {
-                        let mut pattern = e.pattern.clone();
-                        pattern.rotation_deg = shift as f32 * 180.0 / ORIENTATIONS as f32;
-                        best[slot] = Some(Match {
+                    if best.as_ref().is_none_or(|b| d < b.distance) {
+                        best = Some(Match {
                             entry: i,
-                            pattern,
+                            pattern: e.pattern.clone(),
                             swapped: swapped == 1,
                             distance: d,
                         });
+                        best.as_mut().unwrap().pattern.rotation_deg =
+                            shift as f32 * 180.0 / ORIENTATIONS as f32;
                     }
                 }
             }
+            let m = best.expect("eight rotations");
+            let list = &mut top[e.pattern.kind.index() as usize - 1];
+            if list.len() < k || m.distance < list[list.len() - 1].distance {
+                let at = list.partition_point(|x| x.distance <= m.distance);
+                list.insert(at, m);
+                list.truncate(k);
+            }
         }
-        let mut out: Vec<Match> = best.into_iter().flatten().collect();
-        out.sort_by(|a, b| a.distance.total_cmp(&b.distance));
-        out
+        top
     }
 
     /// The bytes of the database file.

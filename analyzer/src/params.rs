@@ -212,10 +212,14 @@ impl Params {
                 ));
             }
         }
-        let params: Params = serde_path_to_error::deserialize(value).map_err(|e| {
+        let mut params: Params = serde_path_to_error::deserialize(value).map_err(|e| {
             let path = e.path().to_string();
             Error::params(path, e.into_inner().to_string())
         })?;
+        if let Model::Structured(m) = &mut params.model {
+            // Ranges narrowed since (see `pattern`'s module docs): old presets still load.
+            m.pattern.clamp_values();
+        }
         params.validate()?;
         Ok(params)
     }

@@ -21,8 +21,8 @@ use crate::gabor::Descriptor;
 use crate::noise::Tile;
 use crate::pattern::Pattern;
 
-/// Evaluations per refined candidate unless the caller says otherwise.
-pub const DEFAULT_EVALUATIONS: usize = 60;
+/// Evaluations per refined start unless the caller says otherwise.
+pub const DEFAULT_EVALUATIONS: usize = 40;
 
 /// A refined pattern.
 #[derive(Clone, Debug, PartialEq)]

@@ -149,3 +149,31 @@ fn unknown_fields_are_rejected() {
     assert!(field.starts_with("transform"), "{field}");
     assert!(message.contains("scael"), "{message}");
 }
+
+/// Presets saved before a family's ranges were narrowed (`pattern`'s module docs) still load,
+/// with their structural values clamped into today's ranges; unknown names still fail.
+#[test]
+fn structured_values_out_of_range_are_clamped_on_import() {
+    use proctex::pattern::{Pattern, PatternKind};
+    use proctex::structure::shell;
+    use serde_json::json;
+    let p = shell(Pattern::new(PatternKind::Brick, 20.0), 1, false);
+    let doc = |key: &str, v: serde_json::Value| {
+        let mut d: serde_json::Value = serde_json::from_str(&p.to_json()).unwrap();
+        d.pointer_mut("/model/pattern/values")
+            .unwrap()
+            .as_object_mut()
+            .unwrap()
+            .insert(key.to_string(), v);
+        d
+    };
+    let mut old = doc("row_offset", json!(0.0));
+    *old.pointer_mut("/model/pattern/values/jitter").unwrap() = json!(0.9);
+    let back = Params::from_json(&old.to_string()).unwrap();
+    let pat = back.model.pattern().unwrap();
+    assert_eq!(pat.get("row_offset"), Some(0.25));
+    assert_eq!(pat.get("jitter"), Some(0.25));
+    assert!(back.validate().is_ok());
+    let (field, _) = field_of(&doc("wobble", json!(0.5)).to_string());
+    assert_eq!(field, "model.pattern.values.wobble");
+}

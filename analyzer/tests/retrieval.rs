@@ -26,16 +26,20 @@ fn draw(kind: PatternKind, case: usize, j: u32) -> f32 {
 /// The query image of one case and its pattern (scale in pixels of the query).
 fn case(kind: PatternKind, case: usize) -> (Photo, Pattern) {
     let u = |j: u32| draw(kind, case, j);
-    // Scales the 128² descriptor image sees at 3–40 texels (the database's range), well inside.
-    let scale = (8.0f32.ln() + (60.0f32.ln() - 8.0f32.ln()) * u(100)).exp();
-    let mut p = Pattern::new(kind, scale);
     let values: Vec<f32> = kind
         .specs()
         .iter()
         .enumerate()
         .map(|(j, s)| s.min + (s.max - s.min) * u(j as u32))
         .collect();
+    let mut p = Pattern::new(kind, 1.0);
     p.set_vector(&values);
+    // Scales of 8–60 texels (4–30 on the 128² descriptor image, the database's range), and
+    // features at most half the query long along the stretched axis (`scale × stretch` ≤ 128
+    // texels): a query must hold a few of its pattern's features to say which pattern it is.
+    let stretch = p.get("stretch").unwrap_or(1.0);
+    let top = (128.0 / stretch).clamp(8.0, 60.0);
+    p.scale = (8.0f32.ln() + (top.ln() - 8.0f32.ln()) * u(100)).exp();
     p.rotation_deg = 180.0 * u(101);
     let mut params = shell(p.clone(), 1000 + case as u32, false);
     // Two tones, at least 0.25 apart in luminance.
@@ -109,15 +113,17 @@ fn synthetic_round_trip_finds_the_right_family() {
     let rate = right as f32 / total as f32;
     println!("right family: {right}/{total} = {:.0} %", 100.0 * rate);
     // Measured (72 cases, 2,560 database entries per family, families ranked by structure
-    // distance): 43 right (60 %; 34 with 320 entries and families ranked by texture distance),
-    // 47 right by refined structure distance alone; winners' texture distance median 2.82,
-    // 90th percentile 4.32. The target is 90 %; the misses are mostly between
-    // neighbouring families (brick → planks or grid, turbulence ↔ ridged ↔ perlin, rings with
-    // strong distortion → cells) and to the noise model. These bounds guard what is reached.
+    // distance, two refinement starts of 40 evaluations per family): 59 right (82 %), 63 by
+    // refined structure distance alone; winners' texture distance median 2.25, 90th percentile
+    // 3.27. Before the families' ranges were cut to their own looks, with queries whose features
+    // could be longer than the query and one start of 60 evaluations: 43 (60 %).
+    // The target is 90 %; the misses left are stochastic families taken for each other
+    // or for the noise model (ridged ↔ turbulence, perlin stretched into lines), and rings far
+    // from their centre taken for lines. These bounds guard what is reached.
     assert!(
-        rate >= 0.55,
+        rate >= 0.75,
         "right family in {:.0} % of cases",
         100.0 * rate
     );
-    assert!(median <= 3.5 && p90 <= 5.0, "median {median}, p90 {p90}");
+    assert!(median <= 2.8 && p90 <= 4.0, "median {median}, p90 {p90}");
 }

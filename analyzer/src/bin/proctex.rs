@@ -55,8 +55,9 @@ OPTIONS:
                             distance; noise: Lagae's noise model; or a structured family:
                             perlin, turbulence, ridged, grid, brick, cells, planks,
                             wood_lines, rings (retrieved, refined, then fitted)
-    --refine N              Nelder–Mead evaluations per family after retrieval (default 60;
-                            0: retrieval alone)";
+    --refine N              Nelder–Mead evaluations per family after retrieval, shared by
+                            its two best database entries as starts (default 80; 0:
+                            retrieval alone)";
 
 const RENDER_HELP: &str = "\
 proctex render PARAMS.json -o OUT.png [OPTIONS]
