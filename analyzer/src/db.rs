@@ -185,28 +185,30 @@ impl Db {
         let queries = [query.clone(), query.swapped()];
         let mut top: Vec<Vec<Match>> = vec![Vec::new(); PatternKind::ALL.len()];
         for (i, e) in self.entries.iter().enumerate() {
-            let mut best: Option<Match> = None;
+            // The entry's best rotation step and tone orientation, without cloning its pattern
+            // unless it makes the family's list (this loop is the whole retrieval).
+            let (mut d_best, mut at) = (f32::INFINITY, (0, false));
             for shift in 0..ORIENTATIONS {
                 let turned = e.descriptor.rotated(shift);
                 for (swapped, q) in queries.iter().enumerate() {
                     let d = self.distance(q, &turned);
-                    if best.as_ref().is_none_or(|b| d < b.distance) {
-                        best = Some(Match {
-                            entry: i,
-                            pattern: e.pattern.clone(),
-                            swapped: swapped == 1,
-                            distance: d,
-                        });
-                        best.as_mut().unwrap().pattern.rotation_deg =
-                            shift as f32 * 180.0 / ORIENTATIONS as f32;
+                    if d < d_best {
+                        (d_best, at) = (d, (shift, swapped == 1));
                     }
                 }
             }
-            let m = best.expect("eight rotations");
             let list = &mut top[e.pattern.kind.index() as usize - 1];
-            if list.len() < k || m.distance < list[list.len() - 1].distance {
-                let at = list.partition_point(|x| x.distance <= m.distance);
-                list.insert(at, m);
+            if list.len() < k || d_best < list[list.len() - 1].distance {
+                let mut pattern = e.pattern.clone();
+                pattern.rotation_deg = at.0 as f32 * 180.0 / ORIENTATIONS as f32;
+                let m = Match {
+                    entry: i,
+                    pattern,
+                    swapped: at.1,
+                    distance: d_best,
+                };
+                let pos = list.partition_point(|x| x.distance <= m.distance);
+                list.insert(pos, m);
                 list.truncate(k);
             }
         }
