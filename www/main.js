@@ -415,6 +415,14 @@ window.proctex = {
   importPresets: (text) => wasm.importPresets(text),
   shareLink: () => { const p = wasm.getParams(); return p ? shareLink(p) : null; },
   getPresets: () => wasm.getPresets() ?? null,
+  // e2e/bench: median milliseconds of the retrieval stages (worker, `reps` runs each) for an
+  // RGBA image.
+  benchRetrieval: async (rgba, width, height, reps) => {
+    const [, reply] = job({ type: 'benchRetrieval', rgba, width, height, reps });
+    const m = await reply;
+    if (m.type !== 'bench') throw new Error(m.message ?? m.type);
+    return m.ms;
+  },
   lastTimings: () => lastTimings,
   // The last ranked suggestions: rows (name, score, distance, retrieval, refined), the
   // milliseconds from retrieval to ranking, whether Cancel cut the refinement.

@@ -183,6 +183,23 @@ async function handle(m) {
       postMessage({ type: 'preview', id: m.id, rgba, ms: performance.now() - t0 }, [rgba.buffer]);
       return;
     }
+    case 'benchRetrieval': {
+      // e2e/bench: median milliseconds of each retrieval stage over `reps` runs.
+      await dbReady;
+      const ms = {};
+      for (const stage of ['ffts', 'descriptor', 'retrieval']) {
+        const t = [];
+        for (let i = 0; i < m.reps; i++) {
+          const s = performance.now();
+          wasm.benchRetrieval(m.rgba, m.width, m.height, stage);
+          t.push(performance.now() - s);
+        }
+        t.sort((a, b) => a - b);
+        ms[stage] = t[t.length >> 1];
+      }
+      postMessage({ type: 'bench', id: m.id, ms });
+      return;
+    }
     default:
       throw new Error(`unknown job ${m.type}`);
   }

@@ -5,6 +5,11 @@
 //!   same code path as in the browser) vs three plain rustfft 2D FFTs of the same size (the cost
 //!   floor of any per-channel spectral analysis). Target: ratio ≤ 2.
 //! - render throughput of the CPU reference renderer at 1024², Mpixel/s, one thread and all.
+//! - model retrieval (issue 5) for a 256² query, single thread: the descriptor (two-tone map
+//!   and Gabor bank) vs its own FFTs alone, and descriptor + search of every family (target
+//!   ≤ 250 ms in WASM; e2e/bench times the same in the browser); the refinement's time and how
+//!   much it lowers the structure distance; the database's build time (target ≤ 3 min on this
+//!   2-core machine) and size (budget 8 MB).
 //!
 //! Run: `cargo bench -p proctex-analyzer --bench analysis`.
 
@@ -12,9 +17,13 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use proctex::analyze::{Options, analyze_photo};
+use proctex::db::{Db, query};
+use proctex::gabor::{descriptor_image, fft_floor};
 use proctex::input::Photo;
 use proctex::render::{Prepared, View, render, render_prepared, tile_for};
+use proctex::retrieve::{Refinement, Suggester, suggest_with};
 use proctex::spectrum::fft2_real;
+use proctex::two_tone::two_tone;
 
 fn median_time(reps: usize, mut f: impl FnMut()) -> Duration {
     f(); // warm-up: FFT plans, caches
@@ -96,5 +105,100 @@ fn main() {
         mpix / one.as_secs_f64(),
         mpix / all.as_secs_f64(),
         rayon::current_num_threads()
+    );
+
+    retrieval(&single);
+}
+
+fn sample(name: &str) -> Photo {
+    let path = format!("{}/../www/samples/{name}", env!("CARGO_MANIFEST_DIR"));
+    Photo::decode(&std::fs::read(path).expect("sample")).expect("decodes")
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn retrieval(single: &rayon::ThreadPool) {
+    let db = Db::shipped();
+    let opts = Options::default();
+    for name in ["skimage_brick_512.png", "skimage_gravel_512.png"] {
+        let photo = sample(name).reduced(256).expect("512² sample");
+        let (w, h) = (photo.width as usize, photo.height as usize);
+        let (ffts, descriptor, retrieve) = single.install(|| {
+            let map = descriptor_image(&two_tone(&photo).structure, w, h);
+            (
+                median_time(11, || {
+                    black_box(fft_floor(black_box(&map)));
+                }),
+                median_time(11, || {
+                    black_box(query(&two_tone(black_box(&photo)).structure, w, h));
+                }),
+                median_time(11, || {
+                    black_box(Suggester::new(db, &photo, &opts, Refinement::default()));
+                }),
+            )
+        });
+        println!(
+            "retrieval, {name} as a 256² query (1 thread): descriptor {:.1} ms, its FFTs alone {:.1} ms \
+             (ratio {:.2}); descriptor + search of {} entries {:.1} ms (target ≤ 250 in WASM; \
+             {:.2}× the FFTs)",
+            ms(descriptor),
+            ms(ffts),
+            descriptor.as_secs_f64() / ffts.as_secs_f64(),
+            db.entries.len(),
+            ms(retrieve),
+            retrieve.as_secs_f64() / ffts.as_secs_f64()
+        );
+        let t = Instant::now();
+        let ranked = suggest_with(db, &photo, &opts, Refinement::default(), &|_, _| true);
+        let all = t.elapsed();
+        let fams: Vec<_> = ranked.iter().filter(|s| s.pattern.is_some()).collect();
+        let gains: Vec<f32> = fams
+            .iter()
+            .map(|s| s.retrieval_distance - s.refined_distance.unwrap_or(s.retrieval_distance))
+            .collect();
+        let best = fams
+            .iter()
+            .min_by(|a, b| {
+                let d = |s: &proctex::retrieve::Suggestion| {
+                    s.refined_distance.unwrap_or(s.retrieval_distance)
+                };
+                d(a).total_cmp(&d(b))
+            })
+            .expect("families");
+        let r = Refinement::default();
+        println!(
+            "refinement, {name}: {} families × {} evaluations ({} starts) + ranking {:.0} ms on {} \
+             threads ({:.0}× retrieval); structure distance lowered by {:.2} on average, {:.2} \
+             at most; nearest family {} {:.2} → {:.2}; first: {}",
+            fams.len(),
+            r.evaluations,
+            r.starts,
+            ms(all),
+            rayon::current_num_threads(),
+            all.as_secs_f64() / retrieve.as_secs_f64(),
+            gains.iter().sum::<f32>() / gains.len() as f32,
+            gains.iter().cloned().fold(0.0, f32::max),
+            best.name,
+            best.retrieval_distance,
+            best.refined_distance.unwrap_or(best.retrieval_distance),
+            ranked[0].name
+        );
+    }
+    let t = Instant::now();
+    let built = Db::build(&|_, _| {});
+    let build = t.elapsed();
+    let bytes = built.to_bytes().len();
+    println!(
+        "database build: {} entries in {:.1} s on {} threads (target ≤ 180 s: ratio {:.2}); \
+         {} bytes ({:.2} MB, budget 8 MB: ratio {:.2})",
+        built.entries.len(),
+        build.as_secs_f64(),
+        rayon::current_num_threads(),
+        build.as_secs_f64() / 180.0,
+        bytes,
+        bytes as f64 / 1e6,
+        bytes as f64 / 8e6
     );
 }

@@ -214,6 +214,20 @@ pub fn describe(map: &[f32]) -> Descriptor {
     Descriptor(out)
 }
 
+/// The descriptor's FFTs alone, on a `SIZE²` map: its spectrum and one full-size inverse
+/// FFT per filter of the bank, nothing else. The cost floor that the benchmarks (native and
+/// WASM) print [`describe`] and retrieval against; returns a checksum so none of it is
+/// optimised away.
+pub fn fft_floor(map: &[f32]) -> f32 {
+    assert_eq!(map.len(), SIZE * SIZE, "descriptor maps are SIZE²");
+    let spec = spectrum_real(map, SIZE, SIZE, true);
+    let mut sum = 0.0f32;
+    for _ in bank() {
+        sum += ifft2(spec.clone(), SIZE, SIZE)[1].re;
+    }
+    sum
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -113,15 +113,17 @@ fn synthetic_round_trip_finds_the_right_family() {
     let rate = right as f32 / total as f32;
     println!("right family: {right}/{total} = {:.0} %", 100.0 * rate);
     // Measured (72 cases, 2,560 database entries per family, families ranked by structure
-    // distance, two refinement starts of 40 evaluations per family): 59 right (82 %), 63 by
-    // refined structure distance alone; winners' texture distance median 2.25, 90th percentile
-    // 3.27. Before the families' ranges were cut to their own looks, with queries whose features
-    // could be longer than the query and one start of 60 evaluations: 43 (60 %).
-    // The target is 90 %; the misses left are stochastic families taken for each other
-    // or for the noise model (ridged ↔ turbulence, perlin stretched into lines), and rings far
-    // from their centre taken for lines. These bounds guard what is reached.
+    // distance, two refinement starts of 40 evaluations per family, OCCAM 0.25): 62 right
+    // (86 %), 63 by refined structure distance alone; winners' texture distance median 2.25,
+    // 90th percentile 3.13. With OCCAM 0.6: 59, three coarse
+    // structured queries lost to the noise model. Before the families' ranges were cut to their
+    // own looks, with queries whose features could be longer than the query and one start of
+    // 60 evaluations: 43 (60 %).
+    // The target is 90 %; the misses left are near ties between stochastic families
+    // (ridged ↔ turbulence, perlin stretched into lines), rings far from their centre taken
+    // for lines, and one rings case taken for noise. These bounds guard what is reached.
     assert!(
-        rate >= 0.75,
+        rate >= 0.8,
         "right family in {:.0} % of cases",
         100.0 * rate
     );

@@ -160,6 +160,43 @@ impl Suggestions {
     }
 }
 
+/// Benchmark job (e2e/bench; the JS side times each call): one stage of model retrieval on an
+/// RGBA image, as the worker's suggestion job runs it. `stage`: `"ffts"` (the descriptor's own
+/// FFTs on a 128² map, the cost floor), `"descriptor"` (reduction to the ranking size,
+/// two-tone structure map, descriptor), `"retrieval"` (all of that, then every family's best
+/// database entries over rotations and tone swaps: `Suggestions`' constructor without the
+/// crop). Returns a checksum.
+#[wasm_bindgen(js_name = benchRetrieval)]
+pub fn bench_retrieval(rgba: &[u8], width: u32, height: u32, stage: &str) -> Result<f64, JsValue> {
+    use proctex::retrieve::{RANK_SIZE, Refinement, Suggester};
+    let photo = proctex::input::Photo::from_rgba8(width, height, rgba).map_err(js_error)?;
+    let small = photo.reduced(RANK_SIZE).unwrap_or_else(|| photo.clone());
+    match stage {
+        "ffts" => {
+            let map = proctex::gabor::descriptor_image(
+                &proctex::two_tone::two_tone(&small).structure,
+                small.width as usize,
+                small.height as usize,
+            );
+            Ok(proctex::gabor::fft_floor(&map) as f64)
+        }
+        "descriptor" => {
+            let tt = proctex::two_tone::two_tone(&small);
+            let (q, _) =
+                proctex::db::query(&tt.structure, small.width as usize, small.height as usize);
+            Ok(q.0.iter().sum::<f32>() as f64)
+        }
+        "retrieval" => {
+            let opts = proctex::analyze::Options::default();
+            let s = Suggester::new(database()?, &photo, &opts, Refinement::default());
+            Ok(s.steps() as f64)
+        }
+        _ => Err(JsValue::from_str(
+            "stage must be ffts, descriptor or retrieval",
+        )),
+    }
+}
+
 /// A crop from JS: `[x, y, w, h]`, or empty for the whole photo.
 fn parse_crop(crop: &[u32]) -> Result<Option<[u32; 4]>, JsValue> {
     match crop {
