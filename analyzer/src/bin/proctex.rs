@@ -394,7 +394,6 @@ fn cmd_morph(mut a: Args) -> Result<()> {
     Ok(())
 }
 
-/// Parses `--model M`.
 /// `--refine N`: N Nelder–Mead evaluations for every family (0: retrieval alone).
 fn refinement_of(evaluations: usize) -> Refinement {
     if evaluations == 0 {
