@@ -43,7 +43,10 @@ worker.onmessage = (e) => {
     if (m.type === 'suggestProgress') wasm.suggestionProgress(m.done, m.total);
     else if (m.type === 'suggestError') wasm.suggestionsFailed(m.message);
     else {
-      lastSuggestions = { rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled };
+      lastSuggestions = {
+        rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled,
+        helpers: m.helpers, helped: m.helped, count: (lastSuggestions?.count ?? 0) + 1,
+      };
       wasm.suggestionsDone(m.rows, m.thumbs, m.cancelled, m.best ?? undefined);
     }
     return;
@@ -425,8 +428,14 @@ window.proctex = {
   },
   lastTimings: () => lastTimings,
   // The last ranked suggestions: rows (name, score, distance, retrieval, refined), the
-  // milliseconds from retrieval to ranking, whether Cancel cut the refinement.
+  // milliseconds from retrieval to ranking, whether Cancel cut the refinement, how many
+  // families the helper workers refined (`helped`, of `helpers` helpers), and how many
+  // rankings the page has received (`count`).
   lastSuggestions: () => lastSuggestions,
+  // e2e/bench: at most `n` helper workers refine families for the next suggestions (default:
+  // the cores beyond the worker's and the page's, at most 3), to time refinement with and
+  // without them in one run; `script` (tests) starts them from another script URL.
+  setRefineHelpers: (n, script) => worker.postMessage({ type: 'setHelpers', n, script }),
 };
 
 // Without WebGPU: say so, and show the CPU reference render of the sample's analysis instead

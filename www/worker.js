@@ -1,8 +1,8 @@
 // The analysis worker. It loads the same wasm as the page (only its pure functions: analyzeRgba,
 // Suggestions, modelStats, previewRgba) and does everything that takes long: decoding a photo
 // file, analysing it (or a crop of it), the automatic model choice (retrieval in the pattern
-// database, then refinement one model family per step), the model statistics for the plots,
-// and the CPU preview.
+// database, then refinement one model family per step, shared with helper workers on machines
+// with more cores: refiner.js), the model statistics for the plots, and the CPU preview.
 //
 // Why a worker rather than splitting the work into slices on the UI thread: the expensive steps
 // are single calls (the browser's image decode of a 12 MP JPEG, rustfft over the analysis
@@ -63,9 +63,79 @@ const dbReady = ready.then(async () => {
 });
 dbReady.catch(() => {}); // reported per photo, below
 
-// The running suggestion: { job, id, cancelled, t0 }. Refinement runs one model family per
-// queued step, so a new photo, a crop, the plots' statistics or Cancel get in between steps.
+// The running suggestion: { job, id, token, cancelled, t0, todo, inflight, waiting, finished,
+// helped, helpers }.
+// Refinement runs one model family per queued step, so a new photo, a crop, the plots'
+// statistics or Cancel get in between steps; helper workers (refiner.js) refine other families
+// at the same time. `todo`: families nobody has started (this worker takes from the front, the
+// helpers from the back); `inflight`: families at the helpers; `waiting`: this worker has
+// nothing left to refine and waits for them.
 let suggestion = null;
+let tokens = 0;
+
+// ---- Helper workers: as many as the machine has cores beyond this worker's and the page's
+// (at most 3). A helper that fails is retired and its family goes back to `todo`.
+const HELPERS = Math.max(0, Math.min(3, (navigator.hardwareConcurrency || 1) - 1));
+let helpers = null;
+let helperLimit = HELPERS; // e2e/bench: setHelpers
+let helperScript = './refiner.js';
+function helperPool() {
+  if (helpers) return helpers;
+  helpers = [];
+  for (let k = 0; k < HELPERS; k++) {
+    const h = { worker: null, job: null, broken: false, token: 0 };
+    try {
+      h.worker = new Worker(new URL(helperScript, import.meta.url), { type: 'module' });
+    } catch {
+      continue;
+    }
+    h.worker.onmessage = (e) => helperDone(h, e.data);
+    h.worker.onerror = () => {
+      h.broken = true;
+      const job = h.job;
+      h.job = null;
+      if (job) helperDone(h, { token: job.token, family: job.family, error: 'helper failed' });
+    };
+    helpers.push(h);
+  }
+  return helpers;
+}
+
+function helperDone(h, m) {
+  h.job = null;
+  const s = suggestion;
+  if (!s) return;
+  if (m.token !== s.token) {
+    dispatch(s, h); // a superseded job's family is dropped; the helper joins the current job
+    return;
+  }
+  s.inflight--;
+  if (m.error) {
+    h.broken = true;
+    s.todo.unshift(m.family); // this worker refines it instead
+  } else if (!s.finished) {
+    s.job.setRefined(m.family, m.json);
+    s.helped++;
+    postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
+  }
+  dispatch(s, h);
+  // This worker waits only while helpers hold families: wake it when the last one is back or a
+  // family came back to `todo`.
+  if (s.waiting && (s.inflight === 0 || s.todo.length > 0)) {
+    s.waiting = false;
+    scheduleStep(s);
+  }
+}
+
+// Gives helper `h` the next family of `s`, when it is idle and holds the job's photo.
+function dispatch(s, h) {
+  if (h.broken || h.job || h.token !== s.token) return;
+  if (s.finished || s.cancelled || s.todo.length === 0) return;
+  const family = s.todo.pop();
+  h.job = { token: s.token, family };
+  s.inflight++;
+  h.worker.postMessage({ type: 'refine', token: s.token, family });
+}
 
 async function startSuggestions(id, crop, seed) {
   if (suggestion) suggestion.job.free();
@@ -87,9 +157,24 @@ async function startSuggestions(id, crop, seed) {
     postMessage({ type: 'suggestError', id, message: `Model suggestions: ${e.message ?? e}` });
     return;
   }
-  const s = { job, id, cancelled: false, t0: performance.now() };
+  const s = {
+    job, id, token: ++tokens, cancelled: false, t0: performance.now(),
+    todo: Array.from({ length: job.steps() }, (_, i) => i), inflight: 0, finished: false,
+    waiting: false, helped: 0, helpers: 0,
+  };
   suggestion = s;
   postMessage({ type: 'suggestProgress', id, done: 0, total: job.steps() });
+  const pool = helperPool().filter((h) => !h.broken).slice(0, helperLimit);
+  if (pool.length > 0 && s.todo.length > 1) {
+    s.helpers = pool.length;
+    const [w, h] = job.preparedSize();
+    const rgb = job.preparedPixels();
+    for (const helper of pool) {
+      helper.worker.postMessage({ type: 'photo', token: s.token, rgb, width: w, height: h, seed });
+      helper.token = s.token;
+      dispatch(s, helper);
+    }
+  }
   scheduleStep(s);
 }
 
@@ -103,20 +188,27 @@ function scheduleStep(s) {
 }
 
 function suggestStep(s) {
-  if (suggestion !== s) return; // superseded (and freed) by a newer photo or crop
-  if (!s.cancelled && s.job.done() < s.job.steps()) {
-    s.job.step();
+  if (suggestion !== s || s.finished) return; // superseded (and freed), or already ranked
+  if (!s.cancelled && s.todo.length > 0) {
+    const family = s.todo.shift();
+    s.job.setRefined(family, s.job.refine(family));
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
     scheduleStep(s);
     return;
   }
+  // Wait for the helpers' last families (their replies wake this up; Cancel ranks now).
+  if (s.inflight > 0 && !s.cancelled) {
+    s.waiting = true;
+    return;
+  }
+  s.finished = true;
   const rows = s.job.rank();
   const thumbs = s.job.thumbnails();
   const first = JSON.parse(rows)[0];
   const best = first && first.name !== 'noise' ? s.job.report(0) : null;
   postMessage({
     type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled,
-    ms: performance.now() - s.t0,
+    ms: performance.now() - s.t0, helpers: s.helpers, helped: s.helped,
   }, [thumbs.buffer]);
 }
 
@@ -209,9 +301,26 @@ async function handle(m) {
 let queue = Promise.resolve();
 onmessage = (e) => {
   const m = e.data;
+  if (m.type === 'setHelpers') {
+    helperLimit = m.n;
+    if (m.script && m.script !== helperScript) {
+      // Tests: another helper script (a missing one, to see the fallback); a fresh pool.
+      for (const h of helpers ?? []) h.worker?.terminate();
+      helpers = null;
+      helperScript = m.script;
+    }
+    return;
+  }
   if (m.type === 'cancelSuggest') {
     // Not queued: the running refinement sees it before its next step.
-    if (suggestion) suggestion.cancelled = true;
+    if (suggestion) {
+      suggestion.cancelled = true;
+      if (suggestion.waiting) {
+        // Only helpers were refining: rank now, without their families.
+        suggestion.waiting = false;
+        scheduleStep(suggestion);
+      }
+    }
     return;
   }
   queue = queue.then(() => handle(m)).catch((err) => {

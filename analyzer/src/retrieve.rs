@@ -184,9 +184,8 @@ pub fn suggest_with(
     #[cfg(target_arch = "wasm32")]
     let refined: Vec<Refined> = (0..s.steps()).map(one).collect();
     for (i, r) in refined.into_iter().enumerate() {
-        s.refined[i] = r;
+        s.set_refined(i, r);
     }
-    s.done = s.steps();
     s.suggestions(db)
 }
 
@@ -203,18 +202,17 @@ pub struct Suggester {
     per_px: f32,
     opts: Options,
     refinement: Refinement,
-    /// Each family's best entry, best first.
-    matches: Vec<Match>,
-    /// Each family's starts (its best entries), in `matches` order.
+    /// Each family's starts (its best entries, best first), families best first.
     starts: Vec<Vec<Match>>,
-    /// Each family's refined result, in `matches` order.
+    /// Each family's refined result, in `starts` order.
     refined: Vec<Refined>,
-    done: usize,
+    /// Which families are refined (in any order: [`Suggester::set_refined`]).
+    is_refined: Vec<bool>,
 }
 
 /// A family's pattern after refinement (or its retrieved one), its refined distance (`None`:
 /// not refined), and whether its tones pair reversed.
-type Refined = (Pattern, Option<f32>, bool);
+pub type Refined = (Pattern, Option<f32>, bool);
 
 impl Suggester {
     /// Describes the photo (reduced to [`RANK_SIZE`]) and retrieves each family's best entry.
@@ -229,11 +227,11 @@ impl Suggester {
             .filter(|v| !v.is_empty())
             .collect();
         starts.sort_by(|a, b| a[0].distance.total_cmp(&b[0].distance));
-        let matches: Vec<Match> = starts.iter().map(|v| v[0].clone()).collect();
-        let refined = matches
+        let refined: Vec<Refined> = starts
             .iter()
-            .map(|m| (m.pattern.clone(), None, m.swapped))
+            .map(|v| (v[0].pattern.clone(), None, v[0].swapped))
             .collect();
+        let is_refined = vec![false; refined.len()];
         Suggester {
             small,
             texels_per_small,
@@ -242,21 +240,35 @@ impl Suggester {
             per_px,
             opts: *opts,
             refinement,
-            matches,
             starts,
             refined,
-            done: 0,
+            is_refined,
         }
     }
 
     /// Families to refine (the first this many by retrieval distance).
     pub fn steps(&self) -> usize {
-        self.refinement.families.min(self.matches.len())
+        self.refinement.families.min(self.starts.len())
     }
 
     /// Families refined so far.
     pub fn done(&self) -> usize {
-        self.done
+        self.is_refined.iter().filter(|&&r| r).count()
+    }
+
+    /// The next family to refine (in retrieval order), if any.
+    pub fn next_family(&self) -> Option<usize> {
+        (0..self.steps()).find(|&i| !self.is_refined[i])
+    }
+
+    /// Stores family `i`'s refinement, computed by [`Suggester::refine_family`] here or on
+    /// another `Suggester` built from the same photo, options and database (the browser's
+    /// helper workers): the result is the same wherever and in whatever order it ran.
+    pub fn set_refined(&mut self, i: usize, r: Refined) {
+        if i < self.steps() {
+            self.refined[i] = r;
+            self.is_refined[i] = true;
+        }
     }
 
     /// Refinement evaluations in all (for progress bars).
@@ -266,7 +278,7 @@ impl Suggester {
 
     /// The refinement of family `i` (in retrieval order): each start refined with its share
     /// of the evaluations, the best kept. `step(done, budget)` counts over all starts.
-    fn refine_family(
+    pub fn refine_family(
         &self,
         db: &Db,
         i: usize,
@@ -307,11 +319,11 @@ impl Suggester {
     /// Refines the next family; `progress(done, budget)` after each evaluation of it (returning
     /// `false` stops it, keeping its best point). Returns whether families remain.
     pub fn step(&mut self, db: &Db, progress: &mut dyn FnMut(usize, usize) -> bool) -> bool {
-        if self.done < self.steps() {
-            self.refined[self.done] = self.refine_family(db, self.done, progress);
-            self.done += 1;
+        if let Some(i) = self.next_family() {
+            let r = self.refine_family(db, i, progress);
+            self.set_refined(i, r);
         }
-        self.done < self.steps()
+        self.next_family().is_some()
     }
 
     /// Every candidate, nearest first, with the refinement done so far.
@@ -330,7 +342,7 @@ impl Suggester {
     pub fn suggestions(&self, db: &Db) -> Vec<Suggestion> {
         let tile = Tile::new_2d(self.opts.seed);
         let margin = OCCAM * self_distance(db, &self.tt);
-        let mut out: Vec<Suggestion> = Vec::with_capacity(self.matches.len() + 1);
+        let mut out: Vec<Suggestion> = Vec::with_capacity(self.starts.len() + 1);
         let noise = analyze_prepared(&self.small, &self.opts).params;
         let distance = texture_distance(db, &self.tt, &self.q, &noise, &tile);
         out.push(Suggestion {
@@ -342,7 +354,8 @@ impl Suggester {
             refined_distance: None,
             preview: noise,
         });
-        for (m, (p, refined_distance, swapped)) in self.matches.iter().zip(&self.refined) {
+        for (starts, (p, refined_distance, swapped)) in self.starts.iter().zip(&self.refined) {
+            let m = &starts[0];
             let mut p = p.clone();
             p.scale *= self.per_px;
             let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, &tile).params;

@@ -139,6 +139,23 @@ test('benchmark: model retrieval for a 256² query in WASM, and what refinement 
         `on average (most ${Math.max(...gain).toFixed(2)}); nearest family ${best.name} ` +
         `${best.retrieval.toFixed(2)} → ${(best.refined ?? best.retrieval).toFixed(2)}; first: ${t.rows[0].name}`);
   }
+  // The helper workers (refiner.js): the same refinement without them and with them, in one
+  // run, with the trivial shader so that the software adapter's frames take little of the CPU.
+  await page.evaluate(() => window.proctex.setFlatShader(true));
+  const timed = {};
+  for (const n of [0, 3]) {
+    await page.evaluate((k) => window.proctex.setRefineHelpers(k), n);
+    await suggestionsFor(page, 'skimage_gravel_512.png');
+    await suggestionsFor(page, 'skimage_brick_512.png');
+    timed[n] = await page.evaluate(() => window.proctex.lastSuggestions());
+  }
+  await page.evaluate(() => window.proctex.setFlatShader(false));
+  const cores = await page.evaluate(() => navigator.hardwareConcurrency);
+  out(`skimage_brick_512.png, trivial shader: retrieval → ranking without helper workers ` +
+      `${timed[0].ms.toFixed(0)} ms; with ${timed[3].helpers} (navigator.hardwareConcurrency ${cores}) ` +
+      `${timed[3].ms.toFixed(0)} ms, ${timed[3].helped} of 9 families refined by them; ratio ` +
+      `${(timed[0].ms / timed[3].ms).toFixed(2)}×; same ranking: ` +
+      `${JSON.stringify(timed[0].rows) === JSON.stringify(timed[3].rows)}`);
   fs.mkdirSync(path.join(__dirname, '..', 'test-results'), { recursive: true });
   fs.appendFileSync(path.join(__dirname, '..', 'test-results', 'bench.txt'), lines.join('\n') + '\n');
 });

@@ -127,19 +127,24 @@ async function morphRockToGrass(page) {
 
 // Loads a shipped sample and waits for its ranked suggestions.
 async function suggestionsFor(page, sample) {
-  const before = (await state(page)).analyses;
+  const before = [
+    (await state(page)).analyses,
+    await page.evaluate(() => window.proctex.lastSuggestions()?.count ?? 0),
+  ];
   await page.evaluate((n) => window.proctex.loadSample(n), sample);
-  await page.waitForFunction((k) => {
+  // This photo's ranking: a ranking received after its analysis (not the previous photo's).
+  await page.waitForFunction(([k, n]) => {
     window.proctex.requestRepaint();
     const s = window.proctex.state();
-    return s.analyses > k && s.suggestions.length > 0 && !s.suggest_progress
-      && window.proctex.lastSuggestions();
+    const t = window.proctex.lastSuggestions();
+    return s.analyses > k && s.suggestions.length > 0 && !s.suggest_progress && t && t.count > n;
   }, before, { polling: 200, timeout: 120_000 });
   await waitFrames(page, 3);
   const s = await state(page);
   const t = await page.evaluate(() => window.proctex.lastSuggestions());
   console.log(`${sample}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
-    `(retrieval to ranking ${t.ms.toFixed(0)} ms)`);
+    `(retrieval to ranking ${t.ms.toFixed(0)} ms; ${t.helped} of ${s.suggestions.length - 1} ` +
+    `families refined by ${t.helpers} helper workers)`);
   return s;
 }
 

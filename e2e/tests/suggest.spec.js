@@ -98,3 +98,20 @@ test('Cancel stops the refinement and ranks what there is', async ({ page }) => 
   // Some families kept their retrieved pattern (no refined distance).
   expect(t.rows.filter((r) => r.retrieval !== null && r.refined === null).length).toBeGreaterThan(0);
 });
+
+test('when the refinement helpers cannot start, the worker refines every family itself', async ({ page }) => {
+  // The helper script fails to load (Playwright's routing does not reach a worker's workers,
+  // so the page points the helpers at a missing script): each helper is retired and its
+  // family goes back to the analysis worker; the ranking is the one the helpers would give.
+  await openApp(page);
+  await page.evaluate(() => window.proctex.setRefineHelpers(3, './missing-refiner.js'));
+  const s = await suggestionsFor(page, 'skimage_gravel_512.png');
+  const t = await page.evaluate(() => window.proctex.lastSuggestions());
+  expect(t.cancelled).toBe(false);
+  expect(t.helped).toBe(0);
+  expect(t.rows.length).toBe(10);
+  // Every family refined, and the same first model as with helpers (the gravel test above).
+  expect(t.rows.filter((r) => r.retrieval !== null && r.refined === null).length).toBe(0);
+  expect(s.suggestions[0].name).toBe('noise');
+  expect(s.suggest_error).toBeNull();
+});

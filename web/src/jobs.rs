@@ -169,6 +169,8 @@ pub struct SuggestionRow {
 /// any suggestion fitted at analysis size on request.
 pub struct SuggestJob {
     photo: Photo,
+    /// The analysis-size photo the suggester works on (what helpers rebuild it from).
+    prepared: Photo,
     opts: Options,
     width: u32,
     height: u32,
@@ -205,6 +207,7 @@ impl SuggestJob {
         let suggester = Suggester::new(db, &reduced, &opts, Refinement::default());
         Ok(SuggestJob {
             photo,
+            prepared: reduced,
             opts,
             width,
             height,
@@ -222,6 +225,26 @@ impl SuggestJob {
     /// Refines the next family; returns whether any remain.
     pub fn step(&mut self, db: &Db) -> bool {
         self.suggester.step(db, &mut |_, _| true)
+    }
+
+    /// The analysis-size photo the suggester works on: RGB `f32` triples, width, height (the
+    /// input of a [`Refiner`] that refines families of this job elsewhere).
+    pub fn prepared(&self) -> (Vec<f32>, u32, u32) {
+        let px = self.prepared.pixels.iter().flatten().copied().collect();
+        (px, self.prepared.width, self.prepared.height)
+    }
+
+    /// Stores family `i`'s refinement as JSON from [`Refiner::refine`] (or this job's own
+    /// [`Refiner::refine`]-equivalent, [`SuggestJob::refine`]).
+    pub fn set_refined(&mut self, i: usize, json: &str) -> Result<(), serde_json::Error> {
+        let r: proctex::retrieve::Refined = serde_json::from_str(json)?;
+        self.suggester.set_refined(i, r);
+        Ok(())
+    }
+
+    /// Refines family `i` without storing it: its result as JSON (for [`SuggestJob::set_refined`]).
+    pub fn refine(&self, db: &Db, i: usize) -> String {
+        refined_json(&self.suggester, db, i)
     }
 
     /// Ranks the candidates with the refinement done so far (the families not refined keep
@@ -295,6 +318,54 @@ pub fn preview_rgba(params: &Params, width: u32, height: u32) -> Vec<u8> {
         .chunks_exact(3)
         .flat_map(|p| [p[0], p[1], p[2], 255])
         .collect()
+}
+
+fn refined_json(s: &Suggester, db: &Db, i: usize) -> String {
+    serde_json::to_string(&s.refine_family(db, i, &mut |_, _| true)).expect("patterns serialise")
+}
+
+/// Refines families of a [`SuggestJob`] in another worker (the page's helper workers): built
+/// from the job's [`SuggestJob::prepared`] photo and seed, it retrieves exactly as the job did,
+/// so each family's refinement equals the job's own.
+#[derive(Clone, Debug)]
+pub struct Refiner {
+    suggester: Suggester,
+}
+
+impl Refiner {
+    /// A refiner for the analysis-size photo `rgb` (`f32` triples) of `width × height`.
+    pub fn new(
+        db: &Db,
+        rgb: &[f32],
+        width: u32,
+        height: u32,
+        seed: u32,
+    ) -> proctex::error::Result<Refiner> {
+        if rgb.len() != width as usize * height as usize * 3 || width == 0 || height == 0 {
+            return Err(proctex::error::Error::Decode(format!(
+                "expected {} floats of RGB for {width}×{height}, got {}",
+                width as usize * height as usize * 3,
+                rgb.len()
+            )));
+        }
+        let photo = Photo {
+            width,
+            height,
+            pixels: rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        };
+        let opts = Options {
+            seed,
+            ..Options::default()
+        };
+        Ok(Refiner {
+            suggester: Suggester::new(db, &photo, &opts, Refinement::default()),
+        })
+    }
+
+    /// Family `i`'s refinement as JSON (for [`SuggestJob::set_refined`]).
+    pub fn refine(&self, db: &Db, i: usize) -> String {
+        refined_json(&self.suggester, db, i)
+    }
 }
 
 #[cfg(test)]
@@ -411,5 +482,35 @@ mod tests {
             proctex::params::Model::Structured(_)
         ));
         assert!(job.report(rows.len()).is_err());
+    }
+
+    /// The page's helper workers: families refined by a `Refiner` built from the job's prepared
+    /// photo, stored in any order, rank exactly as the job's own steps do.
+    #[test]
+    fn families_refined_elsewhere_in_any_order_rank_the_same() {
+        let (rgba, w, h) = sample();
+        let db = Db::shipped();
+        let mut stepped = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+        while stepped.step(db) {}
+        let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+        let (px, pw, ph) = job.prepared();
+        let helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+        let steps = job.progress().1;
+        for i in (0..steps).rev() {
+            let json = if i % 2 == 0 {
+                helper.refine(db, i)
+            } else {
+                job.refine(db, i)
+            };
+            job.set_refined(i, &json).unwrap();
+        }
+        assert_eq!(job.progress(), (steps, steps));
+        let (a, b) = (stepped.rank(db), job.rank(db));
+        assert_eq!(a.len(), b.len());
+        for (x, y) in a.iter().zip(&b) {
+            assert_eq!((&x.name, x.score, x.refined), (&y.name, y.score, y.refined));
+        }
+        assert!(job.set_refined(0, "not json").is_err());
+        assert!(Refiner::new(db, &px[1..], pw, ph, 1).is_err());
     }
 }

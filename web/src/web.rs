@@ -142,6 +142,31 @@ impl Suggestions {
         Ok(self.job.step(database()?))
     }
 
+    /// The analysis-size photo the job works on, RGB `f32` triples (for `Refiner`).
+    #[wasm_bindgen(js_name = preparedPixels)]
+    pub fn prepared_pixels(&self) -> Vec<f32> {
+        self.job.prepared().0
+    }
+
+    /// Width and height of `preparedPixels`.
+    #[wasm_bindgen(js_name = preparedSize)]
+    pub fn prepared_size(&self) -> Vec<u32> {
+        let (_, w, h) = self.job.prepared();
+        vec![w, h]
+    }
+
+    /// Refines family `i` here without storing it; returns the result as JSON for
+    /// `setRefined`.
+    pub fn refine(&self, i: usize) -> Result<String, JsValue> {
+        Ok(self.job.refine(database()?, i))
+    }
+
+    /// Stores family `i`'s refinement (JSON from `refine` here or a helper's `Refiner`).
+    #[wasm_bindgen(js_name = setRefined)]
+    pub fn set_refined(&mut self, i: usize, json: &str) -> Result<(), JsValue> {
+        self.job.set_refined(i, json).map_err(js_error)
+    }
+
     /// Ranks the candidates (refined so far) and returns the rows as JSON.
     pub fn rank(&mut self) -> Result<String, JsValue> {
         let rows = self.job.rank(database()?);
@@ -157,6 +182,30 @@ impl Suggestions {
     pub fn report(&self, i: usize) -> Result<String, JsValue> {
         let r = self.job.report(i).map_err(js_error)?;
         serde_json::to_string(&r).map_err(js_error)
+    }
+}
+
+/// Helper-worker job: refines families of a `Suggestions` job of another worker, from that
+/// job's `preparedPixels`, `preparedSize` and seed (the same retrieval, so the same results).
+#[wasm_bindgen]
+#[derive(Debug)]
+pub struct Refiner {
+    inner: jobs::Refiner,
+}
+
+#[wasm_bindgen]
+impl Refiner {
+    /// Retrieval for the prepared photo; throws when the database is not loaded or the pixels
+    /// do not fit the size.
+    #[wasm_bindgen(constructor)]
+    pub fn new(rgb: &[f32], width: u32, height: u32, seed: u32) -> Result<Refiner, JsValue> {
+        let inner = jobs::Refiner::new(database()?, rgb, width, height, seed).map_err(js_error)?;
+        Ok(Refiner { inner })
+    }
+
+    /// Family `i`'s refinement as JSON (for `Suggestions.setRefined`).
+    pub fn refine(&self, i: usize) -> Result<String, JsValue> {
+        Ok(self.inner.refine(database()?, i))
     }
 }
 
