@@ -4,6 +4,7 @@
 
 const MAX_BANDS: u32 = 12u;
 const MAX_KNOTS: u32 = 33u;
+const MAX_TONE_KNOTS: u32 = 33u;
 
 struct Params {
     // mean RGB, contrast
@@ -25,7 +26,7 @@ struct Params {
     // [knot] → Fritsch–Carlson tangent of channels 0, 1, 2
     tangents: array<vec4<f32>, 33>,
     // structured models (pattern.wgsl): kind (0: the noise model), ramp stops, cell-hash
-    // seed, unused
+    // seed, knots of the output tone curve (0: none)
     pattern: vec4<u32>,
     // 1/pattern scale, cos and sin of the pattern rotation, log2(1/pattern scale)
     pattern_transform: vec4<f32>,
@@ -35,6 +36,12 @@ struct Params {
     pattern_offsets: array<vec4<f32>, 5>,
     // [stop] → ramp colour RGB and its structure value `at`
     ramp: array<vec4<f32>, 16>,
+    // output tone curve: [0] lo of channels 0, 1, 2 (RGB), [1] 1 / (hi − lo)
+    tone_range: array<vec4<f32>, 2>,
+    // [knot] → tone curve value of channels 0, 1, 2
+    tone_knots: array<vec4<f32>, 33>,
+    // [knot] → Fritsch–Carlson tangent of channels 0, 1, 2
+    tone_tangents: array<vec4<f32>, 33>,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;

@@ -1,5 +1,5 @@
 // The procedural texture at a point. Twins: analyzer/src/render.rs (Prepared::texel,
-// channel_noise, colour, shade).
+// channel_noise, colour, tone_eval, shade).
 
 fn texel(world: vec3<f32>) -> vec3<f32> {
     let c = params.transform.y;
@@ -33,7 +33,8 @@ fn channel_noise(c: u32, u: vec3<f32>, log2_fp: f32) -> f32 {
 }
 
 // The colour of the three channels' noise values g on the structured models' ramp colour base
-// (ignored by the noise model): histogram matching, contrast, back to RGB.
+// (ignored by the noise model): histogram matching, contrast, back to RGB, then the structured
+// models' output tone curve.
 fn colour(g: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
     var rgb = params.mean.xyz;
     if (params.pattern.x != 0u) {
@@ -54,7 +55,23 @@ fn colour(g: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
         let cv = params.mean.w * v;
         rgb += cv * params.basis[c].xyz;
     }
+    if (params.pattern.w >= 2u) {
+        for (var c = 0u; c < 3u; c++) {
+            rgb[c] = tone_eval(c, rgb[c]);
+        }
+    }
     return rgb;
+}
+
+// The output tone curve of RGB channel c at v (structured models): the Hermite spline through
+// knots evenly spaced over [lo, hi], clamped to its end knots outside.
+fn tone_eval(c: u32, v: f32) -> f32 {
+    let k = params.pattern.w - 1u;
+    let u = (v - params.tone_range[0][c]) * params.tone_range[1][c];
+    let s = clamp(u, 0.0, 1.0) * f32(k);
+    let i = min(u32(floor(s)), k - 1u);
+    return hermite(s - f32(i), 1.0 / f32(k), params.tone_knots[i][c], params.tone_tangents[i][c],
+        params.tone_knots[i + 1u][c], params.tone_tangents[i + 1u][c]);
 }
 
 fn shade(world: vec3<f32>, log2_fp: f32) -> vec3<f32> {

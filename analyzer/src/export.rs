@@ -16,7 +16,7 @@
 
 use crate::error::{Error, Result};
 use crate::morph::quat_from_matrix;
-use crate::params::{MAX_BANDS, MAX_KNOTS, Params};
+use crate::params::{MAX_BANDS, MAX_KNOTS, MAX_TONE_KNOTS, Params};
 use crate::pattern::{MAX_STOPS, OCTAVES};
 use crate::render::{Prepared, tile_for};
 use crate::rng::stream;
@@ -117,9 +117,17 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
         OCTAVES,
     );
     let ramp = lang.array(p.ramp.iter().copied(), MAX_STOPS);
+    let tone_range = lang.array(p.tone_range.iter().map(|r| [r[0], r[1], r[2], 0.0]), 2);
+    let tone_array = |a: &[[f32; MAX_TONE_KNOTS]; 3]| {
+        lang.array(
+            (0..MAX_TONE_KNOTS).map(|k| [a[0][k], a[1][k], a[2][k], 0.0]),
+            MAX_TONE_KNOTS,
+        )
+    };
+    let (tone_knots, tone_tangents) = (tone_array(&p.tone_knots), tone_array(&p.tone_tangents));
     // WGSL allows a trailing comma in a constructor; GLSL does not.
     format!(
-        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {knots},\n    {tangents},\n    {},\n    {},\n    {values},\n    {octaves},\n    {ramp}\n)",
+        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {knots},\n    {tangents},\n    {},\n    {},\n    {values},\n    {octaves},\n    {ramp},\n    {tone_range},\n    {tone_knots},\n    {tone_tangents}\n)",
         lang.vec4([p.mean[0], p.mean[1], p.mean[2], p.contrast]),
         lang.vec4([p.inv_scale, p.rot[0], p.rot[1], 0.0]),
         lang.uvec4([p.bands, p.knots, p.solid as u32, p.histogram as u32]),

@@ -12,7 +12,7 @@
 //! paper would use, so the composition `inverse CDF ∘ Φ` is evaluated without computing `Φ`.
 //! Values beyond ±Z clamp to the 0.6 % and 99.4 % quantiles.
 //!
-//! [`fc_tangents`], [`knot_coordinate`] and [`spline_eval`] are per-pixel code with WGSL twins.
+//! [`fc_tangents`], [`knot_coordinate`], [`spline_eval`] and [`hermite`] are per-pixel code with WGSL twins.
 
 /// Half-width, in standard deviations, of the Gaussian range the knots span.
 pub const KNOT_Z: f32 = 2.5;
@@ -375,15 +375,27 @@ pub fn spline_eval(knots: &[f32], tangents: &[f32], u: f32) -> f32 {
     let k = knots.len() - 1;
     let s = u.clamp(0.0, 1.0) * k as f32;
     let i = (s.floor() as usize).min(k - 1);
-    let t = s - i as f32;
-    let h = 1.0 / k as f32;
+    hermite(
+        s - i as f32,
+        1.0 / k as f32,
+        knots[i],
+        tangents[i],
+        knots[i + 1],
+        tangents[i + 1],
+    )
+}
+
+/// The cubic Hermite segment from `(y0, slope m0)` to `(y1, slope m1)` over width `h`, at
+/// `t ∈ [0, 1]`.
+#[inline]
+pub fn hermite(t: f32, h: f32, y0: f32, m0: f32, y1: f32, m1: f32) -> f32 {
     let t2 = t * t;
     let t3 = t2 * t;
     let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
     let h10 = t3 - 2.0 * t2 + t;
     let h01 = -2.0 * t3 + 3.0 * t2;
     let h11 = t3 - t2;
-    h00 * knots[i] + h10 * h * tangents[i] + h01 * knots[i + 1] + h11 * h * tangents[i + 1]
+    h00 * y0 + h10 * h * m0 + h01 * y1 + h11 * h * m1
 }
 
 #[cfg(test)]

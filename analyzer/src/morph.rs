@@ -22,7 +22,7 @@
 
 use crate::error::{Error, Result};
 use crate::histogram::{KNOT_Z, fc_tangents, spline_eval};
-use crate::params::{Histogram, Model, NoiseModel, Params};
+use crate::params::{Histogram, Model, NoiseModel, Params, Tone};
 
 /// A rotation as a unit quaternion `(w, x, y, z)`.
 pub type Quat = [f64; 4];
@@ -241,11 +241,17 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
             })
             .collect()
     };
-    let structured = |pattern: Pattern, ramp: Vec<RampStop>| {
+    let tone_of = |m: &Model| match m {
+        Model::Structured(s) => s.tone.clone().filter(|t| t.enabled),
+        Model::Noise(_) => None,
+    };
+    let (ta, tb) = (tone_of(&a.model), tone_of(&b.model));
+    let structured = |pattern: Pattern, ramp: Vec<RampStop>, tone: Option<Tone>| {
         Model::Structured(crate::params::StructuredModel {
             pattern,
             ramp,
             residual: noise.clone(),
+            tone,
         })
     };
     match (&a.model, &b.model) {
@@ -259,12 +265,17 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
             let (va, vb) = (pa.vector(), pb.vector());
             let values: Vec<f32> = va.iter().zip(&vb).map(|(&x, &y)| lerp(x, y, t)).collect();
             pattern.set_vector(&values);
-            structured(pattern, lerp_ramps(&sa.ramp, &sb.ramp, t))
+            structured(
+                pattern,
+                lerp_ramps(&sa.ramp, &sb.ramp, t),
+                lerp_tones(ta.as_ref(), tb.as_ref(), t),
+            )
         }
         _ if t < 0.5 => match &a.model {
             Model::Structured(sa) => structured(
                 sa.pattern.clone(),
                 lerp_ramps(&sa.ramp, &flat(&sa.ramp), 2.0 * t),
+                lerp_tones(ta.as_ref(), None, 2.0 * t),
             ),
             Model::Noise(_) => Model::Noise(noise.clone()),
         },
@@ -272,10 +283,46 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
             Model::Structured(sb) => structured(
                 sb.pattern.clone(),
                 lerp_ramps(&flat(&sb.ramp), &sb.ramp, 2.0 * t - 1.0),
+                lerp_tones(None, tb.as_ref(), 2.0 * t - 1.0),
             ),
             Model::Noise(_) => Model::Noise(noise.clone()),
         },
     }
+}
+
+/// Two output tone curves blended (`None`: no curve, i.e. the identity): both evaluated at
+/// evenly spaced inputs over the union of their ranges (the identity's is `[0, 1]`, outside
+/// which the output clamps anyway), as many knots as the finer one. The ends are exact.
+fn lerp_tones(a: Option<&Tone>, b: Option<&Tone>, t: f32) -> Option<Tone> {
+    use crate::params::MAX_TONE_KNOTS;
+    match (a, b) {
+        (None, None) => return None,
+        (Some(a), _) if t <= 0.0 => return Some(a.clone()),
+        (_, Some(b)) if t >= 1.0 => return Some(b.clone()),
+        (None, _) if t <= 0.0 => return None,
+        (_, None) if t >= 1.0 => return None,
+        _ => {}
+    }
+    let count = |x: Option<&Tone>| x.map_or(2, |x| x.knots[0].len());
+    let n = count(a).max(count(b)).clamp(2, MAX_TONE_KNOTS);
+    let id = Tone::identity(2);
+    let (a, b) = (a.unwrap_or(&id), b.unwrap_or(&id));
+    let mut out = Tone::identity(n);
+    for c in 0..3 {
+        let lo = a.range[c][0].min(b.range[c][0]);
+        let hi = a.range[c][1].max(b.range[c][1]).max(lo + 1e-4);
+        out.range[c] = [lo, hi];
+        let mut prev = f32::NEG_INFINITY;
+        for (k, v) in out.knots[c].iter_mut().enumerate() {
+            let x = lo + (hi - lo) * k as f32 / (n - 1) as f32;
+            // Rounding must not break monotonicity.
+            prev = lerp(a.eval(c, x), b.eval(c, x), t)
+                .clamp(-4.0, 4.0)
+                .max(prev);
+            *v = prev;
+        }
+    }
+    Some(out)
 }
 
 /// Two ramps blended: both evaluated at the union of their stops (at most
@@ -333,6 +380,30 @@ pub fn morph_path(keys: &[Params], t: f32) -> Result<Params> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tone_curves_blend_with_exact_ends_and_through_the_identity() {
+        let a = Tone {
+            enabled: true,
+            range: [[0.1, 0.9]; 3],
+            knots: [0, 1, 2].map(|_| {
+                (0..17)
+                    .map(|k| 0.2 + 0.6 * (k as f32 / 16.0).powi(2))
+                    .collect()
+            }),
+        };
+        assert_eq!(lerp_tones(Some(&a), None, 0.0), Some(a.clone()));
+        assert_eq!(lerp_tones(None, Some(&a), 1.0), Some(a.clone()));
+        assert_eq!(lerp_tones(Some(&a), None, 1.0), None);
+        assert_eq!(lerp_tones(None, None, 0.5), None);
+        let mid = lerp_tones(Some(&a), None, 0.5).unwrap();
+        assert_eq!(mid.range[0], [0.0, 1.0]);
+        for x in [0.2f32, 0.5, 0.8] {
+            let want = 0.5 * (a.eval(0, x) + x);
+            assert!((mid.eval(0, x) - want).abs() < 0.02, "{x}");
+        }
+        assert!(mid.knots[1].windows(2).all(|w| w[0] <= w[1]));
+    }
 
     #[test]
     fn quaternion_round_trip_and_slerp_stay_rotations() {

@@ -19,6 +19,8 @@ pub const FORMAT: &str = "proctex/1";
 pub const MAX_BANDS: usize = 12;
 /// Most knots of a histogram spline (K ≤ 32).
 pub const MAX_KNOTS: usize = 33;
+/// Most knots per channel of a structured model's output [`Tone`] curve.
+pub const MAX_TONE_KNOTS: usize = 33;
 
 /// A procedural texture, completely.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -97,6 +99,88 @@ pub struct StructuredModel {
     pub ramp: Vec<RampStop>,
     /// The residual stochastic detail.
     pub residual: NoiseModel,
+    /// The output tone curve (absent: none; presets from before it load unchanged).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tone: Option<Tone>,
+}
+
+/// An output tone curve per RGB channel, applied last (after ramp, residual and contrast):
+/// `rgb_c ← spline_c((rgb_c − lo_c) / (hi_c − lo_c))`, a monotone Fritsch–Carlson spline
+/// through knots at evenly spaced inputs, clamped to its end knots outside `[lo, hi]`.
+///
+/// Departure from the 2014 paper (two tones) and past our ramp + residual: the ramp is fitted
+/// by least squares and the residual is Gaussian-ish noise, so their sum has the right mean
+/// but not the photo's colour distribution (a brick wall's bricks come out greyer, its
+/// mortar less distinct). The curve maps each channel of the synthesis onto the photo's
+/// distribution: fitted by quantile matching the pooled renders of four seeds to the photo
+/// ([`crate::structure::fit_tone`]), which does not overfit one seed's few bricks.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tone {
+    /// Whether synthesis applies it (kept either way, for toggling).
+    pub enabled: bool,
+    /// Per channel input range `[lo, hi]` that the knots span, `lo < hi`.
+    pub range: [[f32; 2]; 3],
+    /// Per channel output values at evenly spaced inputs, non-decreasing; all three the same
+    /// length, 2 to [`MAX_TONE_KNOTS`].
+    pub knots: [Vec<f32>; 3],
+}
+
+impl Tone {
+    /// The identity curve on `[0, 1]` with `n` knots (what a model without a curve shows,
+    /// up to clamping outside `[0, 1]`, which the 8-bit output clamps anyway).
+    pub fn identity(n: usize) -> Tone {
+        let k: Vec<f32> = (0..n).map(|i| i as f32 / (n - 1) as f32).collect();
+        Tone {
+            enabled: true,
+            range: [[0.0, 1.0]; 3],
+            knots: [k.clone(), k.clone(), k],
+        }
+    }
+
+    /// The curve of channel `c` at `v` (CPU-side, e.g. for morphing; the renderer uses its
+    /// flattened twin [`crate::render::tone_eval`]).
+    pub fn eval(&self, c: usize, v: f32) -> f32 {
+        let [lo, hi] = self.range[c];
+        let k = &self.knots[c];
+        let t = crate::histogram::fc_tangents(k);
+        crate::histogram::spline_eval(k, &t, (v - lo) / (hi - lo))
+    }
+
+    fn validate(&self, at: &str) -> Result<()> {
+        let n = self.knots[0].len();
+        for c in 0..3 {
+            let k = &self.knots[c];
+            if k.len() != n || !(2..=MAX_TONE_KNOTS).contains(&k.len()) {
+                return Err(Error::params(
+                    format!("{at}.knots[{c}]"),
+                    format!(
+                        "must have 2 to {MAX_TONE_KNOTS} knots, as many as channel 0, has {}",
+                        k.len()
+                    ),
+                ));
+            }
+            for (i, &v) in k.iter().enumerate() {
+                check_range(&format!("{at}.knots[{c}][{i}]"), v, -4.0, 4.0)?;
+            }
+            if k.windows(2).any(|w| w[1] < w[0]) {
+                return Err(Error::params(
+                    format!("{at}.knots[{c}]"),
+                    "knots must be non-decreasing",
+                ));
+            }
+            let [lo, hi] = self.range[c];
+            check_range(&format!("{at}.range[{c}][0]"), lo, -4.0, 4.0)?;
+            check_range(&format!("{at}.range[{c}][1]"), hi, -4.0, 4.0)?;
+            if hi - lo < 1e-4 {
+                return Err(Error::params(
+                    format!("{at}.range[{c}]"),
+                    format!("must have lo < hi (by at least 1e-4), has [{lo}, {hi}]"),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 impl Model {
@@ -397,6 +481,9 @@ impl StructuredModel {
                 format!("{at}.ramp"),
                 "stops must be in non-decreasing order of `at`",
             ));
+        }
+        if let Some(tone) = &self.tone {
+            tone.validate(&format!("{at}.tone"))?;
         }
         self.residual.validate(&format!("{at}.residual"))
     }

@@ -12,7 +12,7 @@
 
 use crate::histogram::{fc_tangents, knot_coordinate, spline_eval};
 use crate::noise::{TILE_2D, TILE_3D, Tile, band_fade, noise2, noise3};
-use crate::params::{MAX_BANDS, MAX_KNOTS, Model, Params};
+use crate::params::{MAX_BANDS, MAX_KNOTS, MAX_TONE_KNOTS, Model, Params};
 use crate::pattern::{MAX_STOPS, MAX_VALUES, OCTAVES, pattern, ramp};
 use crate::rng;
 
@@ -48,7 +48,7 @@ pub struct Prepared {
     /// cos and sin of the rotation.
     pub rot: [f32; 2],
     /// Pattern kind (0: the noise model; [`PatternKind::index`] otherwise), ramp stops, seed of
-    /// the cell hashes, unused.
+    /// the cell hashes, knots of the output tone curve (0: none or disabled).
     pub pattern: [u32; 4],
     /// Pattern placement: 1/pattern scale, cos and sin of its rotation, log2(1/pattern scale).
     pub pattern_transform: [f32; 4],
@@ -58,6 +58,12 @@ pub struct Prepared {
     pub pattern_offsets: [[f32; 3]; OCTAVES],
     /// Ramp stops: RGB and `at`, the last stop repeated past the count.
     pub ramp: [[f32; 4]; MAX_STOPS],
+    /// Output tone curve: per channel `lo` and `1 / (hi − lo)`.
+    pub tone_range: [[f32; 3]; 2],
+    /// Output tone curve: per channel knot values, zero past the count.
+    pub tone_knots: [[f32; MAX_TONE_KNOTS]; 3],
+    /// Output tone curve: per channel Fritsch–Carlson tangents.
+    pub tone_tangents: [[f32; MAX_TONE_KNOTS]; 3],
 }
 
 impl Prepared {
@@ -88,6 +94,9 @@ impl Prepared {
             pattern_values: [0.0; MAX_VALUES],
             pattern_offsets: [[0.0; 3]; OCTAVES],
             ramp: [[0.0; 4]; MAX_STOPS],
+            tone_range: [[0.0; 3], [1.0; 3]],
+            tone_knots: [[0.0; MAX_TONE_KNOTS]; 3],
+            tone_tangents: [[0.0; MAX_TONE_KNOTS]; 3],
         };
         if let Model::Structured(m) = &params.model {
             let pat = &m.pattern;
@@ -109,6 +118,17 @@ impl Prepared {
                 let stop = m.ramp[i.min(m.ramp.len() - 1)];
                 p.ramp[i] = [stop.rgb[0], stop.rgb[1], stop.rgb[2], stop.at];
             }
+            if let Some(tone) = m.tone.as_ref().filter(|t| t.enabled) {
+                p.pattern[3] = tone.knots[0].len() as u32;
+                for c in 0..3 {
+                    let [lo, hi] = tone.range[c];
+                    p.tone_range[0][c] = lo;
+                    p.tone_range[1][c] = 1.0 / (hi - lo);
+                    let k = &tone.knots[c];
+                    p.tone_knots[c][..k.len()].copy_from_slice(k);
+                    p.tone_tangents[c][..k.len()].copy_from_slice(&fc_tangents(k));
+                }
+            }
         }
         for c in 0..3 {
             for (j, &w) in model.weights[c].iter().enumerate().take(MAX_BANDS) {
@@ -126,14 +146,22 @@ impl Prepared {
     }
 
     /// Size of [`Prepared::uniform_bytes`]: the `Params` struct of `shaders/params.wgsl`.
-    pub const UNIFORM_SIZE: usize =
-        16 * (7 + MAX_BANDS + 3 * MAX_BANDS + 2 * MAX_KNOTS + 4 + OCTAVES + MAX_STOPS);
+    pub const UNIFORM_SIZE: usize = 16
+        * (7 + MAX_BANDS
+            + 3 * MAX_BANDS
+            + 2 * MAX_KNOTS
+            + 4
+            + OCTAVES
+            + MAX_STOPS
+            + 2
+            + 2 * MAX_TONE_KNOTS);
 
     /// The GPU uniform block, little-endian, laid out as `struct Params` in
     /// `shaders/params.wgsl` (every field a vec4): (mean, contrast), basis rows, (1/scale, cos, sin),
     /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[channel·12 + band],
     /// knots[k], tangents[k], then the pattern: (kind, stops, seed, 0) as u32, its transform,
-    /// its 8 values, its octave offsets, and the ramp stops (RGB, at).
+    /// its 8 values, its octave offsets, the ramp stops (RGB, at), and the output tone curve:
+    /// `lo`, `1 / (hi − lo)`, knots[k], tangents[k].
     pub fn uniform_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(Self::UNIFORM_SIZE);
         let mut f4 = |v: [f32; 4]| {
@@ -208,6 +236,14 @@ impl Prepared {
         for r in self.ramp {
             f4(r);
         }
+        for r in self.tone_range {
+            f4([r[0], r[1], r[2], 0.0]);
+        }
+        for a in [&self.tone_knots, &self.tone_tangents] {
+            for k in 0..MAX_TONE_KNOTS {
+                f4([a[0][k], a[1][k], a[2][k], 0.0]);
+            }
+        }
         debug_assert_eq!(out.len(), Self::UNIFORM_SIZE);
         out
     }
@@ -279,7 +315,7 @@ pub fn channel_noise(prep: &Prepared, tile: &Tile, c: usize, u: [f32; 3], log2_f
 
 /// The colour of the three channels' noise values `g` on the structured models' ramp colour
 /// `base` (ignored by the noise model): histogram matching (inverse CDF spline), contrast, back
-/// to RGB about the mean.
+/// to RGB about the mean, then the structured models' output tone curve.
 #[inline]
 pub fn colour(prep: &Prepared, g: [f32; 3], base: [f32; 3]) -> [f32; 3] {
     let mut rgb = prep.mean;
@@ -307,7 +343,24 @@ pub fn colour(prep: &Prepared, g: [f32; 3], base: [f32; 3]) -> [f32; 3] {
             rgb[i] += cv * prep.basis[c][i];
         }
     }
+    if prep.pattern[3] >= 2 {
+        for (c, v) in rgb.iter_mut().enumerate() {
+            *v = tone_eval(prep, c, *v);
+        }
+    }
     rgb
+}
+
+/// The output tone curve of RGB channel `c` at `v` (structured models; see
+/// [`crate::params::Tone`]).
+#[inline]
+pub fn tone_eval(prep: &Prepared, c: usize, v: f32) -> f32 {
+    let n = prep.pattern[3] as usize;
+    spline_eval(
+        &prep.tone_knots[c][..n],
+        &prep.tone_tangents[c][..n],
+        (v - prep.tone_range[0][c]) * prep.tone_range[1][c],
+    )
 }
 
 /// The colour at world point `world` for a pixel footprint of `2^log2_fp` texels.

@@ -177,3 +177,56 @@ fn structured_values_out_of_range_are_clamped_on_import() {
     let (field, _) = field_of(&doc("wobble", json!(0.5)).to_string());
     assert_eq!(field, "model.pattern.values.wobble");
 }
+
+/// A structured preset's output tone curve: absent (presets from before it) loads as none, a
+/// present one survives the round trip, and bad knots or ranges name their field.
+#[test]
+fn tone_curves_load_round_trip_and_name_bad_fields() {
+    use proctex::params::{Model, Tone};
+    use proctex::pattern::{Pattern, PatternKind};
+    use proctex::structure::shell;
+    use serde_json::json;
+    let mut p = shell(Pattern::new(PatternKind::Cells, 20.0), 1, false);
+    let old = p.to_json();
+    assert!(!old.contains("tone"), "no curve, no field");
+    assert_eq!(Params::from_json(&old).unwrap(), p);
+    if let Model::Structured(m) = &mut p.model {
+        m.tone = Some(Tone::identity(5));
+    }
+    let text = p.to_json();
+    assert_eq!(Params::from_json(&text).unwrap(), p);
+    let cases = [
+        (
+            "/model/tone/knots/1",
+            json!([0.0, 0.5, 0.4, 0.8, 1.0]),
+            "model.tone.knots[1]",
+        ),
+        (
+            "/model/tone/knots/2",
+            json!([0.0, 1.0]),
+            "model.tone.knots[2]",
+        ),
+        (
+            "/model/tone/knots/0/3",
+            json!(1e308),
+            "model.tone.knots[0][3]",
+        ),
+        (
+            "/model/tone/range/1",
+            json!([0.5, 0.5]),
+            "model.tone.range[1]",
+        ),
+        (
+            "/model/tone/range/0/0",
+            json!(-9.0),
+            "model.tone.range[0][0]",
+        ),
+    ];
+    for (pointer, value, want) in cases {
+        let (field, message) = field_of(&with(&p, pointer, value));
+        assert!(
+            field.starts_with(want),
+            "expected `{want}`, got `{field}`: {message}"
+        );
+    }
+}

@@ -78,6 +78,22 @@ test("a structured model's sliders change the image", async ({ page }) => {
   expect(meanDiff(await grab(page, square), before)).toBeGreaterThan(2);
 });
 
+test("the adopted structured model's output tone curve toggles", async ({ page }) => {
+  await openApp(page);
+  const s = await suggestionsFor(page, 'skimage_brick_512.png');
+  const params = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(params.model.kind).toBe('structured');
+  expect(params.model.tone.enabled).toBe(true);
+  expect(params.model.tone.knots[0].length).toBeGreaterThan(2);
+  const square = innerSquare(s.widgets.texture, 192);
+  const before = await grab(page, square);
+  await clickWidget(page, 'tone');
+  await waitFrames(page, 3);
+  const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(after.model.tone.enabled).toBe(false);
+  expect(meanDiff(await grab(page, square), before)).toBeGreaterThan(1);
+});
+
 test('Cancel stops the refinement and ranks what there is', async ({ page }) => {
   await openApp(page);
   await page.evaluate(() => window.proctex.loadSample('skimage_brick_512.png'));

@@ -3,6 +3,7 @@
 
 #define MAX_BANDS 12
 #define MAX_KNOTS 33
+#define MAX_TONE_KNOTS 33
 
 struct Params {
     vec4 mean;              // mean RGB, contrast
@@ -14,9 +15,12 @@ struct Params {
     vec4 offsets[36];       // [channel*12 + band] -> offset (x, y, z) in coefficient units
     vec4 knots[33];         // [knot] -> knot value of channels 0, 1, 2
     vec4 tangents[33];      // [knot] -> Fritsch-Carlson tangent of channels 0, 1, 2
-    uvec4 pattern;          // pattern kind (0: noise model), ramp stops, cell-hash seed, unused
+    uvec4 pattern;          // pattern kind (0: noise model), ramp stops, cell-hash seed, tone knots
     vec4 pattern_transform; // 1/pattern scale, cos, sin of its rotation, log2(1/pattern scale)
     vec4 pattern_values[2]; // structural values in spec order
     vec4 pattern_offsets[5];// [octave] -> offset of the pattern's noise octaves
     vec4 ramp[16];          // [stop] -> ramp colour RGB, structure value `at`
+    vec4 tone_range[2];     // output tone curve: [0] lo per RGB channel, [1] 1 / (hi - lo)
+    vec4 tone_knots[33];    // [knot] -> tone curve value of channels 0, 1, 2
+    vec4 tone_tangents[33]; // [knot] -> Fritsch-Carlson tangent of channels 0, 1, 2
 };

@@ -1,5 +1,5 @@
 // The procedural texture at a point (GLSL twin of shaders/texture.wgsl; Rust twins in
-// analyzer/src/render.rs: Prepared::texel, channel_noise, colour, shade).
+// analyzer/src/render.rs: Prepared::texel, channel_noise, colour, tone_eval, shade).
 
 vec3 texel(vec3 world) {
     float c = params.transform.y;
@@ -30,8 +30,20 @@ float channel_noise(int c, vec3 u, float log2_fp) {
     return sum;
 }
 
+// The output tone curve of RGB channel c at v (structured models): the Hermite spline through
+// knots evenly spaced over [lo, hi], clamped to its end knots outside.
+float tone_eval(int c, float v) {
+    uint k = params.pattern.w - 1u;
+    float u = (v - params.tone_range[0][c]) * params.tone_range[1][c];
+    float s = clamp(u, 0.0, 1.0) * float(k);
+    uint i = min(uint(floor(s)), k - 1u);
+    return hermite(s - float(i), 1.0 / float(k), params.tone_knots[i][c], params.tone_tangents[i][c],
+        params.tone_knots[i + 1u][c], params.tone_tangents[i + 1u][c]);
+}
+
 // The colour of the three channels' noise values g on the structured models' ramp colour base
-// (ignored by the noise model): histogram matching, contrast, back to RGB.
+// (ignored by the noise model): histogram matching, contrast, back to RGB, then the structured
+// models' output tone curve.
 vec3 colour(vec3 g, vec3 base) {
     vec3 rgb = params.mean.xyz;
     if (params.pattern.x != 0u) {
@@ -51,6 +63,11 @@ vec3 colour(vec3 g, vec3 base) {
         }
         float cv = params.mean.w * v;
         rgb += cv * params.basis[c].xyz;
+    }
+    if (params.pattern.w >= 2u) {
+        for (int c = 0; c < 3; c++) {
+            rgb[c] = tone_eval(c, rgb[c]);
+        }
     }
     return rgb;
 }

@@ -2,8 +2,8 @@
 //! exactly the size and constants the Rust side writes.
 
 use proctex::histogram::KNOT_Z;
-use proctex::params::{MAX_BANDS, MAX_KNOTS};
-use proctex::pattern::{MAX_VALUES, OCTAVES};
+use proctex::params::{MAX_BANDS, MAX_KNOTS, MAX_TONE_KNOTS};
+use proctex::pattern::{MAX_STOPS, MAX_VALUES, OCTAVES};
 use proctex::render::Prepared;
 
 fn parse(name: &str, src: &str) -> naga::Module {
@@ -73,6 +73,8 @@ fn seamless_uniform_matches_rust() {
 #[test]
 fn uniform_layout_matches_rust() {
     const PATTERN_AT: u32 = 112 + 64 * MAX_BANDS as u32 + 32 * MAX_KNOTS as u32;
+    const RAMP_AT: u32 = PATTERN_AT + 32 + 16 * (MAX_VALUES as u32 / 4) + 16 * OCTAVES as u32;
+    const TONE_AT: u32 = RAMP_AT + 16 * MAX_STOPS as u32;
     let src = proctex_shaders::plane_shader();
     let module = parse("plane", &src);
     let mut layouter = naga::proc::Layouter::default();
@@ -110,10 +112,10 @@ fn uniform_layout_matches_rust() {
             "pattern_offsets",
             PATTERN_AT + 32 + 16 * (MAX_VALUES as u32 / 4),
         ),
-        (
-            "ramp",
-            PATTERN_AT + 32 + 16 * (MAX_VALUES as u32 / 4) + 16 * OCTAVES as u32,
-        ),
+        ("ramp", RAMP_AT),
+        ("tone_range", TONE_AT),
+        ("tone_knots", TONE_AT + 32),
+        ("tone_tangents", TONE_AT + 32 + 16 * MAX_TONE_KNOTS as u32),
     ];
     assert_eq!(offsets.len(), want.len(), "every member is checked");
     for ((name, off), (wname, woff)) in offsets.iter().zip(want) {
@@ -134,6 +136,7 @@ fn uniform_layout_matches_rust() {
     };
     assert_eq!(constant("MAX_BANDS"), MAX_BANDS.to_string());
     assert_eq!(constant("MAX_KNOTS"), MAX_KNOTS.to_string());
+    assert_eq!(constant("MAX_TONE_KNOTS"), MAX_TONE_KNOTS.to_string());
     assert_eq!(constant("KNOT_Z").parse::<f32>().unwrap(), KNOT_Z);
     assert_eq!(constant("PATTERN_OCTAVES"), OCTAVES.to_string());
     assert_eq!(

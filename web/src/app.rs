@@ -2403,6 +2403,50 @@ fn structure_controls(
             rects.push((format!("ramp.{i}.at"), r));
         });
     }
+    if let Some(tone) = &mut m.tone {
+        let r = ui
+            .checkbox(&mut tone.enabled, "output tone curve")
+            .on_hover_text(
+                "Per RGB channel, maps the synthesis's colour distribution onto the photo's \
+                 (fitted by the analysis; the plot shows output against input, 0 to 1)",
+            );
+        rects.push(("tone".into(), r));
+        tone_plot(ui, tone);
+    }
+}
+
+/// The output tone curve of each RGB channel, output against input over `[0, 1]`.
+fn tone_plot(ui: &mut egui::Ui, tone: &proctex::params::Tone) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(160.0, 100.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    let visuals = ui.visuals();
+    painter.rect_filled(rect, 2.0, visuals.extreme_bg_color);
+    painter.line_segment(
+        [rect.left_bottom(), rect.right_top()],
+        egui::Stroke::new(1.0, visuals.weak_text_color()),
+    );
+    let colours = [
+        egui::Color32::from_rgb(230, 80, 80),
+        egui::Color32::from_rgb(80, 200, 80),
+        egui::Color32::from_rgb(90, 130, 240),
+    ];
+    let alpha = if tone.enabled { 1.0 } else { 0.35 };
+    for (c, colour) in colours.into_iter().enumerate() {
+        let points: Vec<egui::Pos2> = (0..=64)
+            .map(|i| {
+                let x = i as f32 / 64.0;
+                let y = tone.eval(c, x).clamp(0.0, 1.0);
+                egui::pos2(
+                    rect.left() + x * rect.width(),
+                    rect.bottom() - y * rect.height(),
+                )
+            })
+            .collect();
+        painter.add(egui::Shape::line(
+            points,
+            egui::Stroke::new(1.5, colour.gamma_multiply(alpha)),
+        ));
+    }
 }
 
 fn short(v: f32) -> String {

@@ -260,7 +260,8 @@ fn gpu_matches_cpu_reference() {
 }
 
 /// A structured texture of `kind` on `base`'s colours and noise: the pattern at its defaults,
-/// scale 11 texels, turned 20°, a three-stop ramp about the mean, the noise at 40 %.
+/// scale 11 texels, turned 20°, a three-stop ramp about the mean, the noise at 40 %, an output
+/// tone curve.
 fn structured(base: &Params, kind: proctex::pattern::PatternKind) -> Params {
     use proctex::params::{Model, StructuredModel};
     use proctex::pattern::{Pattern, RampStop};
@@ -291,6 +292,19 @@ fn structured(base: &Params, kind: proctex::pattern::PatternKind) -> Params {
             },
         ],
         residual,
+        // An S-shaped output tone curve, a different one per channel.
+        tone: Some(proctex::params::Tone {
+            enabled: true,
+            range: [[0.1, 0.8], [0.15, 0.9], [0.05, 0.7]],
+            knots: [0.9f32, 1.0, 1.15].map(|g| {
+                (0..9)
+                    .map(|k| {
+                        let x = k as f32 / 8.0;
+                        0.05 + 0.9 * (x * x * (3.0 - 2.0 * x)).powf(g)
+                    })
+                    .collect()
+            }),
+        }),
     });
     p.validate().unwrap();
     p
