@@ -110,6 +110,10 @@ async function morphHalfway(page) {
 
 for (const [lang, hostPage] of HOSTS) {
   test(`the exported ${lang.toUpperCase()} morph renders the app's morph at the slider's t`, async ({ page }) => {
+    // Two analyses with their suggestions, then the host page compiles and runs a shader that
+    // rebuilds the params per pixel: 1.6–2.6 min on the 2-core SwiftShader machine, too close
+    // to the default 3 min (both timed out once while other jobs shared the machine).
+    test.setTimeout(360_000);
     const size = 128;
     const t = await morphHalfway(page);
     const { app, src, offset } = await appViewAndSnippet(page, lang, size, 'morph');
