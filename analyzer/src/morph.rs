@@ -307,6 +307,7 @@ fn lerp_tones(a: Option<&Tone>, b: Option<&Tone>, t: f32) -> Option<Tone> {
     let n = count(a).max(count(b)).clamp(2, MAX_TONE_KNOTS);
     let id = Tone::identity(2);
     let (a, b) = (a.unwrap_or(&id), b.unwrap_or(&id));
+    let (ca, cb) = (a.curve(), b.curve());
     let mut out = Tone::identity(n);
     for c in 0..3 {
         let lo = a.range[c][0].min(b.range[c][0]);
@@ -316,9 +317,7 @@ fn lerp_tones(a: Option<&Tone>, b: Option<&Tone>, t: f32) -> Option<Tone> {
         for (k, v) in out.knots[c].iter_mut().enumerate() {
             let x = lo + (hi - lo) * k as f32 / (n - 1) as f32;
             // Rounding must not break monotonicity.
-            prev = lerp(a.eval(c, x), b.eval(c, x), t)
-                .clamp(-4.0, 4.0)
-                .max(prev);
+            prev = lerp(ca(c, x), cb(c, x), t).clamp(-4.0, 4.0).max(prev);
             *v = prev;
         }
     }

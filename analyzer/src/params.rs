@@ -138,13 +138,23 @@ impl Tone {
         }
     }
 
-    /// The curve of channel `c` at `v` (CPU-side, e.g. for morphing; the renderer uses its
-    /// flattened twin [`crate::render::tone_eval`]).
+    /// The curve as a function of (channel, value), its tangents computed once (CPU-side, e.g.
+    /// for fitting and morphing; the renderer uses its flattened twin
+    /// [`crate::render::tone_eval`]).
+    pub fn curve(&self) -> impl Fn(usize, f32) -> f32 + '_ {
+        let tangents = self
+            .knots
+            .clone()
+            .map(|k| crate::histogram::fc_tangents(&k));
+        move |c, v| {
+            let [lo, hi] = self.range[c];
+            crate::histogram::spline_eval(&self.knots[c], &tangents[c], (v - lo) / (hi - lo))
+        }
+    }
+
+    /// The curve of channel `c` at `v`, once (see [`Tone::curve`] for many values).
     pub fn eval(&self, c: usize, v: f32) -> f32 {
-        let [lo, hi] = self.range[c];
-        let k = &self.knots[c];
-        let t = crate::histogram::fc_tangents(k);
-        crate::histogram::spline_eval(k, &t, (v - lo) / (hi - lo))
+        self.curve()(c, v)
     }
 
     fn validate(&self, at: &str) -> Result<()> {

@@ -217,14 +217,17 @@ pub fn fit_tone(photo: &Photo, params: &Params) -> Option<crate::params::Tone> {
         .iter()
         .map(|&lambda| {
             let mut mapped = shown.clone();
-            for p in &mut mapped.pixels {
-                *p = if lambda == 0.0 {
-                    // No curve at all (not the identity clamped to the range).
-                    p.map(|v| v.clamp(0.0, 1.0))
-                } else {
-                    let t = tone_strength(&tone, lambda);
-                    [0, 1, 2].map(|c| t.eval(c, p[c]).clamp(0.0, 1.0))
-                };
+            if lambda == 0.0 {
+                // No curve at all (not the identity clamped to the range).
+                for p in &mut mapped.pixels {
+                    *p = p.map(|v| v.clamp(0.0, 1.0));
+                }
+            } else {
+                let t = tone_strength(&tone, lambda);
+                let curve = t.curve();
+                for p in &mut mapped.pixels {
+                    *p = [0, 1, 2].map(|c| curve(c, p[c]).clamp(0.0, 1.0));
+                }
             }
             colour_distance(&mapped, &target)
         })

@@ -2431,11 +2431,12 @@ fn tone_plot(ui: &mut egui::Ui, tone: &proctex::params::Tone) {
         egui::Color32::from_rgb(90, 130, 240),
     ];
     let alpha = if tone.enabled { 1.0 } else { 0.35 };
+    let curve = tone.curve();
     for (c, colour) in colours.into_iter().enumerate() {
         let points: Vec<egui::Pos2> = (0..=64)
             .map(|i| {
                 let x = i as f32 / 64.0;
-                let y = tone.eval(c, x).clamp(0.0, 1.0);
+                let y = curve(c, x).clamp(0.0, 1.0);
                 egui::pos2(
                     rect.left() + x * rect.width(),
                     rect.bottom() - y * rect.height(),
