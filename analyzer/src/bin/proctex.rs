@@ -97,9 +97,9 @@ Prints texture distances between A and B (any sizes):
 const FIDELITY_HELP: &str = "\
 proctex fidelity PHOTO... [--seeds N] [--model M] [--json] [analyze OPTIONS]
 
-For each photo: splits it into left and right halves A and B, synthesises from each half
-(seeds 1..N, default 3) and compares with the other half. Prints d(A,B), the mean
-d(synthesis, other half), and their ratio (near 1: as close as another patch of the same
+For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
+bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
+other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio (near 1: as close as another patch of the same
 material), and the floor: the same ratio for the patch's own spectrum with random phases,
 histogram-matched (the best any Gaussian model can do). --model as for `analyze`, but noise
 by default (the README's noise-only table).";
