@@ -140,6 +140,12 @@ pub fn colour_distance(a: &Photo, b: &Photo) -> f64 {
 /// bond) and the shape of the distribution (thin dark joints), which is what structured models
 /// are for; it is not rotation invariant (two patches of one photo share their orientation).
 pub fn structure_distance(a: &Photo, b: &Photo) -> f64 {
+    structure_distance_with(Db::shipped(), a, b)
+}
+
+/// [`structure_distance`] with the weights of `db` (the browser loads the database file
+/// rather than embedding it in the wasm).
+pub fn structure_distance_with(db: &Db, a: &Photo, b: &Photo) -> f64 {
     let describe_lum = |p: &Photo| {
         let lum: Vec<f32> = p
             .pixels
@@ -148,11 +154,16 @@ pub fn structure_distance(a: &Photo, b: &Photo) -> f64 {
             .collect();
         describe(&descriptor_image(&lum, p.width as usize, p.height as usize))
     };
-    Db::shipped().distance(&describe_lum(a), &describe_lum(b)) as f64
+    db.distance(&describe_lum(a), &describe_lum(b)) as f64
 }
 
 /// The three distances.
 pub fn distances(a: &Photo, b: &Photo) -> Distances {
+    distances_with(Db::shipped(), a, b)
+}
+
+/// [`distances`] with the structure distance weighted by `db`.
+pub fn distances_with(db: &Db, a: &Photo, b: &Photo) -> Distances {
     let (sa, sb) = (radial_spectrum(a), radial_spectrum(b));
     let mut sum = 0.0;
     let mut count = 0;
@@ -170,7 +181,7 @@ pub fn distances(a: &Photo, b: &Photo) -> Distances {
             0.0
         },
         colour: colour_distance(a, b),
-        structure: structure_distance(a, b),
+        structure: structure_distance_with(db, a, b),
     }
 }
 

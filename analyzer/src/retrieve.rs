@@ -420,7 +420,7 @@ pub fn analyze_with_model(
         ModelChoice::Noise => s.pattern.is_none(),
     });
     let analysis = match pick.and_then(|s| s.pattern.as_ref()) {
-        Some((p, swapped)) => fit_structured(photo, p, opts, *swapped),
+        Some((p, swapped)) => fit_structured(db, photo, p, opts, *swapped),
         None => analyze_prepared(photo, opts),
     };
     (analysis, suggestions)

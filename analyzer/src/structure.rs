@@ -135,8 +135,15 @@ pub fn structure_image_prepared(prep: &Prepared, tile: &Tile, width: u32, height
 /// with the user's seed, and the `α` of least `ln d_spectrum + ln d_colour + ln d_structure`
 /// to the photo is kept (the sum of logs: each distance relative to the others' scales, no
 /// weights to tune). Gains: the fidelity table (README).
-pub fn fit_structured(photo: &Photo, pattern: &Pattern, opts: &Options, swapped: bool) -> Analysis {
-    use crate::evaluate::distances;
+/// `db` weighs the structure distance (the shipped database natively; the one the browser
+/// loaded there).
+pub fn fit_structured(
+    db: &crate::db::Db,
+    photo: &Photo,
+    pattern: &Pattern,
+    opts: &Options,
+    swapped: bool,
+) -> Analysis {
     use crate::render::{View, render};
     let (base, gains) =
         fit_structured_gains(photo, pattern, opts, swapped, &Tile::new_2d(opts.seed));
@@ -159,7 +166,7 @@ pub fn fit_structured(photo: &Photo, pattern: &Pattern, opts: &Options, swapped:
         }
         let a = with_tone(a);
         let img = render(&a.params, photo.width, photo.height, &View::default()).to_photo();
-        let d = distances(&img, photo);
+        let d = crate::evaluate::distances_with(db, &img, photo);
         let score = [d.spectrum_db, d.colour, d.structure]
             .iter()
             .map(|&v| (v + 1e-9).ln())
@@ -626,7 +633,13 @@ mod tests {
         p.colour.mean = [0.6, 0.4, 0.3];
         let img = render(&p, 128, 128, &View::default()).to_photo();
         // Mortar is lighter than brick here: the tones pair the other way round.
-        let a = fit_structured(&img, &pat, &Options::default(), true);
+        let a = fit_structured(
+            crate::db::Db::shipped(),
+            &img,
+            &pat,
+            &Options::default(),
+            true,
+        );
         let Model::Structured(m) = &a.params.model else {
             panic!("structured")
         };
@@ -702,8 +715,11 @@ mod tests {
         let (base, gains) =
             fit_structured_gains(&photo, &pat, &opts, false, &Tile::new_2d(opts.seed));
         assert!(gains[0] > 2.0, "gains {gains:?}");
-        let fitted = fit_structured(&photo, &pat, &opts, false);
-        assert_eq!(fitted, fit_structured(&photo, &pat, &opts, false));
+        let fitted = fit_structured(crate::db::Db::shipped(), &photo, &pat, &opts, false);
+        assert_eq!(
+            fitted,
+            fit_structured(crate::db::Db::shipped(), &photo, &pat, &opts, false)
+        );
         fitted.params.validate().unwrap();
         let knots = |a: &Analysis| match &a.params.model {
             Model::Structured(m) => m.residual.histogram.knots[0]

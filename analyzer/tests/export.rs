@@ -23,8 +23,14 @@ fn every_texture() -> Vec<(String, proctex::params::Params)> {
     let brick = sample("skimage_brick_512.png").reduced(256).unwrap();
     for kind in proctex::pattern::PatternKind::ALL {
         let pattern = proctex::pattern::Pattern::new(kind, 12.0);
-        let params =
-            proctex::structure::fit_structured(&brick, &pattern, &Options::default(), false).params;
+        let params = proctex::structure::fit_structured(
+            proctex::db::Db::shipped(),
+            &brick,
+            &pattern,
+            &Options::default(),
+            false,
+        )
+        .params;
         if matches!(
             kind,
             proctex::pattern::PatternKind::Cells | proctex::pattern::PatternKind::Rings

@@ -291,13 +291,13 @@ impl SuggestJob {
 
     /// The report of ranked candidate `i` fitted to the photo at analysis size (what adopting
     /// it shows).
-    pub fn report(&self, i: usize) -> proctex::error::Result<Report> {
+    pub fn report(&self, db: &Db, i: usize) -> proctex::error::Result<Report> {
         let s = self.ranked.get(i).ok_or_else(|| {
             proctex::error::Error::Option(format!("no suggestion {i} (rank the photo first)"))
         })?;
         let analysis = analyze_photo_with(&self.photo, &self.opts, |p, o| match &s.pattern {
             // The pattern's scale is in texels of the photo the suggester saw, which is `p`.
-            Some((pattern, swapped)) => fit_structured(p, pattern, o, *swapped),
+            Some((pattern, swapped)) => fit_structured(db, p, pattern, o, *swapped),
             None => analyze_prepared(p, o),
         })?;
         report(
@@ -475,13 +475,13 @@ mod tests {
         let side = THUMB_SIDE as usize;
         assert_eq!(job.thumbnails().len(), rows.len() * side * side * 4);
         let i = rows.iter().position(|r| r.name != "noise").unwrap();
-        let report = job.report(i).unwrap();
+        let report = job.report(db, i).unwrap();
         report.params.validate().unwrap();
         assert!(matches!(
             report.params.model,
             proctex::params::Model::Structured(_)
         ));
-        assert!(job.report(rows.len()).is_err());
+        assert!(job.report(db, rows.len()).is_err());
     }
 
     /// The page's helper workers: families refined by a `Refiner` built from the job's prepared

@@ -180,7 +180,7 @@ impl Suggestions {
 
     /// The report JSON of ranked candidate `i` fitted at analysis size.
     pub fn report(&self, i: usize) -> Result<String, JsValue> {
-        let r = self.job.report(i).map_err(js_error)?;
+        let r = self.job.report(database()?, i).map_err(js_error)?;
         serde_json::to_string(&r).map_err(js_error)
     }
 }
