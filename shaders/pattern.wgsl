@@ -153,9 +153,10 @@ fn pattern(u: vec3<f32>, log2_fp: f32) -> f32 {
             let v = q.y + w0.y * n;
             return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), w0.z);
         }
-        // rings: distortion, sharpness, roughness, stretch
+        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y
         case 9u: {
-            let p = vec3<f32>(q.x / w0.w, q.y, q.z);
+            let qc = vec2<f32>(c * w1.x + s * w1.y, -s * w1.x + c * w1.y);
+            let p = vec3<f32>((q.x - qc.x) / w0.w, q.y - qc.y, q.z);
             let n = octaves(vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0);
             let r = sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
             return pow(max(0.5 + 0.5 * sin(6.2831855 * r), 1e-6), w0.y);

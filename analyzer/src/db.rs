@@ -82,6 +82,15 @@ pub fn sample(kind: PatternKind, i: usize) -> Pattern {
         .map(|(j, s)| s.min + (s.max - s.min) * u(j))
         .collect();
     p.set_vector(&values);
+    if kind == PatternKind::Rings {
+        // The centre inside the middle 60 % of the descriptor image, not uniform over its
+        // range: rings far from their centre are straight lines (the wood-lines family).
+        let side = crate::gabor::SIZE as f32;
+        for (j, name) in [(12, "centre_x"), (13, "centre_y")] {
+            let texel = side * (0.2 + 0.6 * u(j));
+            p.set(name, texel / p.scale);
+        }
+    }
     p
 }
 

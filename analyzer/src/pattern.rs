@@ -89,6 +89,23 @@ const ROUGHNESS: ValueSpec = v(
     0.5,
     "amplitude ratio of successive noise octaves (higher: more fine detail)",
 );
+/// Where the rings' centre lies, in ring spacings (the pattern's scale) from the texture's
+/// origin, before rotation (rings turn about their centre). Rings far from their centre are
+/// straight lines (the wood-lines family), so analysis places it inside the photo.
+const CENTRE_X: ValueSpec = v(
+    "centre_x",
+    -24.0,
+    24.0,
+    0.0,
+    "centre of the rings along x, in ring spacings from the origin",
+);
+const CENTRE_Y: ValueSpec = v(
+    "centre_y",
+    -24.0,
+    24.0,
+    0.0,
+    "centre of the rings along y, in ring spacings from the origin",
+);
 const BEVEL: ValueSpec = v(
     "bevel",
     0.0,
@@ -342,6 +359,8 @@ impl PatternKind {
                             1.0,
                             "ellipticity of the rings (more: they read as straight lines)",
                         ),
+                        CENTRE_X,
+                        CENTRE_Y,
                     ]
                 }
             }
@@ -411,6 +430,18 @@ impl Pattern {
             {
                 *v = v.clamp(s.min, s.max);
             }
+        }
+    }
+
+    /// Sets the value called `name` (clamped to its range); false for a name `kind` lacks.
+    pub fn set(&mut self, name: &str, value: f32) -> bool {
+        match self.kind.specs().iter().find(|s| s.name == name) {
+            Some(s) => {
+                self.values
+                    .insert(name.to_string(), value.clamp(s.min, s.max));
+                true
+            }
+            None => false,
         }
     }
 
@@ -612,9 +643,11 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
                 .max(1e-6)
                 .powf(w[2])
         }
-        // rings: distortion, sharpness, roughness, stretch
+        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y (the centre at
+        // texel `scale · (centre_x, centre_y)`, so the rings turn about it)
         9 => {
-            let p = [q[0] / w[3], q[1], q[2]];
+            let qc = [c * w[4] + s * w[5], -s * w[4] + c * w[5]];
+            let p = [(q[0] - qc[0]) / w[3], q[1] - qc[1], q[2]];
             let n = octaves(
                 prep,
                 tile,
@@ -676,6 +709,27 @@ mod tests {
                     s.min < s.max && (s.min..=s.max).contains(&s.default),
                     "{s:?}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn rings_turn_about_their_centre() {
+        // Without distortion and ellipticity the rings' value depends only on the distance
+        // to their centre, at texel `scale · (centre_x, centre_y)` whatever the rotation.
+        let tile = Tile::new_2d(1);
+        for rotation in [0.0, 30.0, 90.0, 135.0] {
+            let mut p = Pattern::new(PatternKind::Rings, 10.0);
+            p.rotation_deg = rotation;
+            assert!(p.set("distortion", 0.0) && p.set("centre_x", 3.0) && p.set("centre_y", 5.0));
+            let prep = Prepared::new(&crate::structure::shell(p, 1, false));
+            let at = |phi: f32| {
+                let u = [30.0 + 12.3 * phi.cos(), 50.0 + 12.3 * phi.sin(), 0.0];
+                pattern(&prep, &tile, u, 0.0)
+            };
+            let v0 = at(0.0);
+            for phi in [0.7, 1.9, 3.1, 4.4, 5.6] {
+                assert!((at(phi) - v0).abs() < 1e-3, "{rotation}°, {phi}");
             }
         }
     }

@@ -153,8 +153,9 @@ float pattern(vec3 u, float log2_fp) {
         return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), w0.z);
     }
     case 9u: {
-        // rings: distortion, sharpness, roughness, stretch
-        vec3 p = vec3(q.x / w0.w, q.y, q.z);
+        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y
+        vec2 qc = vec2(c * w1.x + s * w1.y, -s * w1.x + c * w1.y);
+        vec3 p = vec3((q.x - qc.x) / w0.w, q.y - qc.y, q.z);
         float n = octaves(vec3(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0);
         float r = sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
         return pow(max(0.5 + 0.5 * sin(6.2831855 * r), 1e-6), w0.y);

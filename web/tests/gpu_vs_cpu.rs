@@ -275,6 +275,9 @@ fn structured(base: &Params, kind: proctex::pattern::PatternKind) -> Params {
     let tone = |k: f32| [0, 1, 2].map(|c| (m[c] + k * b[c]).clamp(0.0, 1.0));
     let mut pattern = Pattern::new(kind, 11.0);
     pattern.rotation_deg = 20.0;
+    // Rings centred inside the image (texel (44, 33)), so that the centre's offset is compared.
+    pattern.set("centre_x", 4.0);
+    pattern.set("centre_y", 3.0);
     p.model = Model::Structured(StructuredModel {
         pattern,
         ramp: vec![

@@ -99,10 +99,10 @@ proctex fidelity PHOTO... [--seeds N] [--model M] [--json] [analyze OPTIONS]
 
 For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
 bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
-other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio (near 1: as close as another patch of the same
-material), and the floor: the same ratio for the patch's own spectrum with random phases,
-histogram-matched (the best any Gaussian model can do). --model as for `analyze`, but noise
-by default (the README's noise-only table).";
+other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio
+(near 1: as close as another patch of the same material), and the floor: the same ratio for
+the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
+can do). --model as for `analyze`, but noise by default (the README's noise-only table).";
 
 const MORPH_HELP: &str = "\
 proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
