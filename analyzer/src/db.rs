@@ -299,9 +299,14 @@ impl Db {
                 values.push(f32_of(take(4)?));
             }
             let q = take(LEN)?;
+            // Level 255 reads back as `hi` exactly (`lo + (hi − lo)` may round), so that
+            // writing a database read from bytes gives the same bounds and the same bytes.
             let descriptor = Descriptor(
                 (0..LEN)
-                    .map(|i| lo[i] + (hi[i] - lo[i]) * q[i] as f32 / 255.0)
+                    .map(|i| match q[i] {
+                        255 => hi[i],
+                        l => lo[i] + (hi[i] - lo[i]) * l as f32 / 255.0,
+                    })
                     .collect(),
             );
             let mut pattern = Pattern::new(kind, scale);
