@@ -139,6 +139,12 @@ pub fn refine(
             simplex[n] = if fe < fr { (xe, fe) } else { (xr, fr) };
         } else if fr < simplex[n - 1].1 {
             simplex[n] = (xr, fr);
+        } else if used.get() >= evaluations {
+            // The budget is spent: no contraction; the reflection replaces the worst point
+            // where it is better.
+            if fr < worst.1 {
+                simplex[n] = (xr, fr);
+            }
         } else {
             let (xc, fc) = if fr < worst.1 {
                 let xc = towards(-0.5);
