@@ -78,7 +78,7 @@ pub fn refine(
     let mut stopped = false;
     let f = |x: &[f64]| -> f64 {
         used.set(used.get() + 1);
-        db.distance(
+        db.pattern_distance(
             query,
             &describe_pattern(&from_point(start, x), DB_SEED, tile),
         ) as f64

@@ -118,19 +118,18 @@ fn synthetic_round_trip_finds_the_right_family() {
     let rate = right as f32 / total as f32;
     println!("right family: {right}/{total} = {:.0} %", 100.0 * rate);
     // Measured (72 cases, 2,560 database entries per family and 5,120 for perlin and cells,
-    // families ranked by structure distance, two distinct refinement starts of 40 evaluations
-    // per family, OCCAM 0.25, rings centred inside the image): 63 right (88 %), 65 by refined
-    // structure distance alone; winners' texture distance median 2.32, 90th percentile 3.18. With OCCAM 0.6: 59, three coarse
-    // structured queries lost to the noise model. Before the families' ranges were cut to their
-    // own looks, with queries whose features could be longer than the query and one start of
-    // 60 evaluations: 43 (60 %).
-    // The target is 90 %; the misses left are near ties between stochastic families
-    // (ridged ↔ turbulence, perlin stretched into lines or cells), a wood-lines case taken
-    // for rings and a rings case for lines, and a ridged and a rings case whose family is the
-    // nearest by structure but loses to the noise model. These bounds guard what is reached.
+    // families ranked by structure distance with the database's fine-grain rule, two distinct
+    // refinement starts of 40 evaluations per family, OCCAM 0.2, rings centred inside the
+    // image): 65 right (90 %), 65 by refined structure distance alone. With OCCAM 0.25 and no
+    // fine-grain rule: 63. With OCCAM 0.6: 59, three coarse structured queries lost to the
+    // noise model. Before the families' ranges were cut to their own looks, with queries whose
+    // features could be longer than the query and one start of 60 evaluations: 43 (60 %).
+    // The misses left are near ties between stochastic families (ridged ↔ turbulence, perlin
+    // stretched into lines or blobs into cells), a ridged case taken for wood lines, and a
+    // finely distorted rings case that loses to the noise model. The target, 90 %.
     assert!(
-        rate >= 0.8,
-        "right family in {:.0} % of cases",
+        right * 10 >= total * 9,
+        "right family in {right} of {total} cases ({:.0} %), below 90 %",
         100.0 * rate
     );
     assert!(median <= 2.8 && p90 <= 4.0, "median {median}, p90 {p90}");
