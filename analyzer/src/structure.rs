@@ -402,7 +402,7 @@ impl Balance {
     /// that the rendered pattern lacks is the residual's to draw. Growing the residual without
     /// taking that variance back from the ramp widened the render's distribution, the colour
     /// distance then outweighed the spectrum's gain in step 6's score, and the residual stayed
-    /// weak (hacienda: its render 2–3 dB short in the quarter-octave rings of 3–11 px).
+    /// weak (hacienda: its render 2–3 dB short in the quarter-octave rings of 3–10 px).
     fn contract_ramp(&self, ramp: &mut [RampStop], grow: [f64; 3]) {
         let base: f64 = self.residual_var.iter().sum();
         let share = self.photo_var - base;
