@@ -198,10 +198,9 @@ impl Db {
     /// Measured: the brick sample ranks brick first (planks before, brick a near second), the
     /// reptile skin cells (wood lines before); gravel's best pattern falls from 0.15 to 0.07 of
     /// its self distance (further from structured); synthetic round trip 64 → 65 of 72. With
-    /// a database rendered 1.5×
-    /// supersampled (so that its fine joints do not alias, as a query's are averaged), the
-    /// round trip reached 66, but ridged then beat the noise model on gravel (0.50) and grass
-    /// (0.30).
+    /// a database rendered 1.5× supersampled (so that its fine joints do not alias, as a
+    /// query's are averaged), the round trip reached 66, but ridged then beat the noise model
+    /// on gravel (0.50) and grass (0.30).
     pub fn pattern_distance(&self, query: &Descriptor, pattern: &Descriptor) -> f32 {
         query
             .0
