@@ -256,19 +256,8 @@ fn match_spectrum(photo: &Photo, params: &mut Params, opts: &Options) {
     let c = (0..3)
         .max_by(|&a, &b| lum(a).total_cmp(&lum(b)))
         .unwrap_or(0);
-    let power = |img: &Photo| -> Vec<f64> {
-        let (b, m) = (colour.basis[c], colour.mean);
-        let ch: Vec<f32> = img
-            .pixels
-            .iter()
-            .map(|p| b[0] * (p[0] - m[0]) + b[1] * (p[1] - m[1]) + b[2] * (p[2] - m[2]))
-            .collect();
-        let p = crate::spectrum::band_powers(&ch, w, h, nb, opts.periodic);
-        crate::spectrum::estimate_weights(&p, opts.estimator)
-            .iter()
-            .map(|&v| (v as f64).powi(2))
-            .collect()
-    };
+    let power =
+        |img: &Photo| channel_powers(&colour, c, &mut img.pixels.iter().copied(), w, h, opts);
     let full = render(params, photo.width, photo.height, &View::default()).to_photo();
     let mut bare = params.clone();
     if let Model::Structured(m) = &mut bare.model {
@@ -709,32 +698,22 @@ fn compensate_spectrum(
     let mut gains = [1.0f64; 3];
     let (w, h) = (photo.width as usize, photo.height as usize);
     let nb = crate::spectrum::num_bands(w, h);
-    let channel = |c: usize, px: &mut dyn Iterator<Item = [f32; 3]>| -> Vec<f32> {
-        let b = colour.basis[c];
-        let m = colour.mean;
-        px.map(|p| b[0] * (p[0] - m[0]) + b[1] * (p[1] - m[1]) + b[2] * (p[2] - m[2]))
-            .collect()
-    };
-    let power = |img: &[f32]| -> Vec<f64> {
-        let p = crate::spectrum::band_powers(img, w, h, nb, opts.periodic);
-        crate::spectrum::estimate_weights(&p, opts.estimator)
-            .iter()
-            .map(|&v| (v as f64).powi(2))
-            .collect()
+    let power = |c: usize, px: &mut dyn Iterator<Item = [f32; 3]>| {
+        channel_powers(colour, c, px, w, h, opts)
     };
     for (c, wc) in weights.iter_mut().enumerate() {
         if wc.len() != nb {
             continue;
         }
-        let p_photo = power(&channel(c, &mut photo.pixels.iter().copied()));
-        let p_ramp = power(&channel(
+        let p_photo = power(c, &mut photo.pixels.iter().copied());
+        let p_ramp = power(
             c,
             &mut s_img.iter().map(|&sv| {
                 let r = ramp_rows(rows, sv);
                 [r[0], r[1], r[2]]
             }),
-        ));
-        let p_res = power(&channel(c, &mut residual.pixels.iter().copied()));
+        );
+        let p_res = power(c, &mut residual.pixels.iter().copied());
         let before: f64 = wc.iter().map(|&v| (v as f64).powi(2)).sum();
         for k in 0..nb {
             let target = (p_photo[k] - p_ramp[k]).max(p_photo[k] / 20.0);
@@ -752,6 +731,29 @@ fn compensate_spectrum(
         }
     }
     gains
+}
+
+/// The band powers (as the analysis estimates them: weights squared) of decorrelated channel
+/// `c` of `colour` over a `w × h` image's pixels `px`: what [`compensate_spectrum`] predicts and
+/// [`match_spectrum`] measures.
+fn channel_powers(
+    colour: &Colour,
+    c: usize,
+    px: &mut dyn Iterator<Item = [f32; 3]>,
+    w: usize,
+    h: usize,
+    opts: &Options,
+) -> Vec<f64> {
+    let (b, m) = (colour.basis[c], colour.mean);
+    let ch: Vec<f32> = px
+        .map(|p| b[0] * (p[0] - m[0]) + b[1] * (p[1] - m[1]) + b[2] * (p[2] - m[2]))
+        .collect();
+    let nb = crate::spectrum::num_bands(w, h);
+    let p = crate::spectrum::band_powers(&ch, w, h, nb, opts.periodic);
+    crate::spectrum::estimate_weights(&p, opts.estimator)
+        .iter()
+        .map(|&v| (v as f64).powi(2))
+        .collect()
 }
 
 /// The stop segment `i` and the fraction `f` towards stop `i + 1` of structure value `s`, as
