@@ -7,8 +7,17 @@
 // analyzer/src/histogram.rs (fc_tangents). Same operation order, f32 (the CPU slerps and takes
 // tangents in f64). Generated constants: MORPH_SEGMENT_COUNT (u32), MORPH_SEGMENTS
 // (array<MorphSegment, MORPH_SEGMENT_COUNT>), MORPH_ENDS (array<Params, MORPH_SEGMENT_COUNT + 1>:
-// each key's own params, the images at the keys' t) and MORPH_OFFSETS (the band offsets of the
-// first key's seed, which the whole morph renders with).
+// each key's own params, the images at the keys' t), MORPH_OFFSETS (the band offsets of the
+// first key's seed, which the whole morph renders with), MORPH_SEED (that seed: the cell hash of
+// structured models) and MORPH_PATTERN_OFFSETS (its pattern octaves' offsets).
+//
+// Structured models (morph.rs, morph_structure): within one family the pattern's scale
+// (geometric), rotation (the shorter way) and values (clamped to their ranges) interpolate, and
+// so do the ramps (both evaluated at the union of their stops) and the output tone curves (both
+// evaluated on one grid over the union of their ranges, then kept non-decreasing). Between
+// families (a noise model counts as the flat ramp at the mean colour) the segment's first half
+// fades the first pattern's ramp to the mean colour and the second half fades the second's in.
+// The tables of both ends (union stops, tone grids) are computed on the CPU at export.
 
 // One end of a morph segment: what interpolates.
 struct MorphKey {
@@ -25,11 +34,41 @@ struct MorphKey {
     knots: array<vec4<f32>, 33>,
 }
 
+// The structured model along (a half of) a segment, from u = 0 to u = 1.
+struct MorphStructure {
+    // pattern kind (0: the noise model, nothing to do), ramp stops, tone knots (0: no curve),
+    // flags: 1 the pattern interpolates (else `transform` and `values_a` hold), 2 the ramp at
+    // u = 0 is the flat mean colour, 4 the ramp at u = 1 is, 8 no tone curve at u = 0
+    info: vec4<u32>,
+    // the fixed pattern's transform (Params.pattern_transform)
+    transform: vec4<f32>,
+    // ln(scale) at u = 0, rotation at u = 0 (degrees), turn to u = 1 (degrees), ln(scale) at 1
+    pose: vec4<f32>,
+    // the structural values at u = 0 and 1, and their ranges
+    values_a: array<vec4<f32>, 2>,
+    values_b: array<vec4<f32>, 2>,
+    value_min: array<vec4<f32>, 2>,
+    value_max: array<vec4<f32>, 2>,
+    // [stop] → the ramp at u = 0 and at u = 1 (RGB, at), at the union of their stops
+    ramp_a: array<vec4<f32>, 16>,
+    ramp_b: array<vec4<f32>, 16>,
+    // the blended tone curve's range: [0] lo of RGB, [1] 1 / (hi − lo)
+    tone_range: array<vec4<f32>, 2>,
+    // [knot] → both tone curves on the blend's grid (RGB)
+    tone_a: array<vec4<f32>, 33>,
+    tone_b: array<vec4<f32>, 33>,
+}
+
 struct MorphSegment {
     a: MorphKey,
     b: MorphKey,
     // bands, knots, solid (0/1), histogram (0/1) of the blend
     counts: vec4<u32>,
+    // x: 0 both ends noise models, 1 one pattern family (`first` all the way), 2 a cross-fade
+    // (`first` for t < ½, `second` after)
+    mode: vec4<u32>,
+    first: MorphStructure,
+    second: MorphStructure,
 }
 
 // Spherical linear interpolation of unit quaternions along the shorter arc.
@@ -124,7 +163,75 @@ fn morph(seg: MorphSegment, t: f32) -> Params {
         p.knots[k] = v;
     }
     p.tangents = fc_tangents(p.knots, seg.counts.y);
+    p.pattern = vec4<u32>(0u, 0u, MORPH_SEED, 0u);
+    if (seg.mode.x == 1u) {
+        morph_structure(seg.first, t, &p);
+    } else if (seg.mode.x == 2u) {
+        if (t < 0.5) {
+            morph_structure(seg.first, 2.0 * t, &p);
+        } else {
+            morph_structure(seg.second, 2.0 * t - 1.0, &p);
+        }
+    }
     return p;
+}
+
+// The pattern, ramp and tone curve a fraction u of the way through `st` (p's mean already the
+// blend's: a flat ramp is that colour).
+fn morph_structure(st: MorphStructure, u: f32, p: ptr<function, Params>) {
+    let kind = st.info.x;
+    if (kind == 0u) {
+        return;
+    }
+    (*p).pattern = vec4<u32>(kind, st.info.y, MORPH_SEED, 0u);
+    (*p).pattern_offsets = MORPH_PATTERN_OFFSETS;
+    if ((st.info.w & 1u) != 0u) {
+        let scale = exp(st.pose.x * (1.0 - u) + st.pose.w * u);
+        let angle = radians(st.pose.y + u * st.pose.z);
+        let inv = 1.0 / scale;
+        (*p).pattern_transform = vec4<f32>(inv, cos(angle), sin(angle), log2(inv));
+        for (var i = 0u; i < 2u; i++) {
+            let v = st.values_a[i] + u * (st.values_b[i] - st.values_a[i]);
+            (*p).pattern_values[i] = clamp(v, st.value_min[i], st.value_max[i]);
+        }
+    } else {
+        (*p).pattern_transform = st.transform;
+        (*p).pattern_values = st.values_a;
+    }
+    lerp_ramps(st, u, p);
+    lerp_tones(st, u, p);
+}
+
+// The ramp of `st` at u (stops past the count repeat the last, as Params from the CPU do).
+fn lerp_ramps(st: MorphStructure, u: f32, p: ptr<function, Params>) {
+    let mean = (*p).mean.xyz;
+    let n = st.info.y;
+    for (var i = 0u; i < 16u; i++) {
+        let j = min(i, n - 1u);
+        let a = select(st.ramp_a[j].xyz, mean, (st.info.w & 2u) != 0u);
+        let b = select(st.ramp_b[j].xyz, mean, (st.info.w & 4u) != 0u);
+        (*p).ramp[i] = vec4<f32>(clamp(a + u * (b - a), vec3<f32>(0.0), vec3<f32>(1.0)), st.ramp_a[j].w);
+    }
+}
+
+// The output tone curve of `st` at u: knots blended, clamped, kept non-decreasing, tangents
+// recomputed.
+fn lerp_tones(st: MorphStructure, u: f32, p: ptr<function, Params>) {
+    let k = st.info.z;
+    if (k == 0u || (u <= 0.0 && (st.info.w & 8u) != 0u)) {
+        return;
+    }
+    (*p).pattern.w = k;
+    (*p).tone_range = st.tone_range;
+    for (var i = 0u; i < k; i++) {
+        var v = clamp(st.tone_a[i] + u * (st.tone_b[i] - st.tone_a[i]), vec4<f32>(-4.0), vec4<f32>(4.0));
+        if (i > 0u) {
+            // Rounding must not break monotonicity.
+            v = max(v, (*p).tone_knots[i - 1u]);
+        }
+        (*p).tone_knots[i] = v;
+    }
+    (*p).tone_tangents = fc_tangents((*p).tone_knots, k);
 }
 
 // The params at t ∈ [0, 1] of the whole morph (its segments spread evenly over t).

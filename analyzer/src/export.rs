@@ -16,6 +16,7 @@
 
 use crate::error::{Error, Result};
 use crate::morph::quat_from_matrix;
+use crate::noise::{TILE_2D, TILE_3D};
 use crate::params::{MAX_BANDS, MAX_KNOTS, MAX_TONE_KNOTS, Params};
 use crate::pattern::{MAX_STOPS, OCTAVES};
 use crate::render::{Prepared, tile_for};
@@ -318,10 +319,187 @@ fn glsl_of(subject: &Subject) -> String {
 struct MorphTables {
     /// The first key, whose seed (tile and band offsets) the whole morph renders with.
     first: Params,
-    /// Per segment: its two ends and the blend's counts.
-    segments: Vec<([MorphKey; 2], [u32; 4])>,
+    /// Per segment: its two ends, the blend's counts and its structured models.
+    segments: Vec<MorphSegment>,
     /// The params at each key's t: `keys[i]` with the first key's seed, and the end of the path.
     ends: Vec<Prepared>,
+    /// The pattern octaves' offsets of the first key's seed.
+    pattern_offsets: [[f32; 3]; OCTAVES],
+}
+
+/// One segment of a morph (struct `MorphSegment` of `shaders/morph.wgsl`).
+struct MorphSegment {
+    ends: [MorphKey; 2],
+    counts: [u32; 4],
+    structure: SegmentStructure,
+}
+
+/// The structured models along a segment, as [`crate::morph::morph`] blends them: `mode` 0
+/// (two noise models), 1 (one family: `halves[0]` all the way) or 2 (a cross-fade: `halves[0]`
+/// for t < ½, `halves[1]` after).
+struct SegmentStructure {
+    mode: u32,
+    halves: [MorphStructure; 2],
+}
+
+impl SegmentStructure {
+    fn new(a: &Params, b: &Params) -> SegmentStructure {
+        use crate::params::Model;
+        let tone = |m: &crate::params::StructuredModel| m.tone.clone().filter(|t| t.enabled);
+        match (&a.model, &b.model) {
+            (Model::Noise(_), Model::Noise(_)) => SegmentStructure {
+                mode: 0,
+                halves: [MorphStructure::NOISE, MorphStructure::NOISE],
+            },
+            (Model::Structured(sa), Model::Structured(sb))
+                if sa.pattern.kind == sb.pattern.kind =>
+            {
+                SegmentStructure {
+                    mode: 1,
+                    halves: [
+                        MorphStructure::new(
+                            [&sa.pattern, &sb.pattern],
+                            [Some(&sa.ramp), Some(&sb.ramp)],
+                            [tone(sa), tone(sb)],
+                        ),
+                        MorphStructure::NOISE,
+                    ],
+                }
+            }
+            (ma, mb) => {
+                let first = match ma {
+                    Model::Structured(sa) => MorphStructure::new(
+                        [&sa.pattern, &sa.pattern],
+                        [Some(&sa.ramp), None],
+                        [tone(sa), None],
+                    ),
+                    Model::Noise(_) => MorphStructure::NOISE,
+                };
+                let second = match mb {
+                    Model::Structured(sb) => MorphStructure::new(
+                        [&sb.pattern, &sb.pattern],
+                        [None, Some(&sb.ramp)],
+                        [None, tone(sb)],
+                    ),
+                    Model::Noise(_) => MorphStructure::NOISE,
+                };
+                SegmentStructure {
+                    mode: 2,
+                    halves: [first, second],
+                }
+            }
+        }
+    }
+}
+
+/// A structured model from `u = 0` to `u = 1` (struct `MorphStructure` of `shaders/morph.wgsl`):
+/// every table the shader interpolates, computed here as [`crate::morph`] computes them.
+struct MorphStructure {
+    info: [u32; 4],
+    transform: [f32; 4],
+    pose: [f32; 4],
+    /// values at 0, at 1, their minima and maxima (two vec4 each).
+    values: [[[f32; 4]; 2]; 4],
+    ramp: [[[f32; 4]; MAX_STOPS]; 2],
+    tone_range: [[f32; 4]; 2],
+    tone: [[[f32; 4]; MAX_TONE_KNOTS]; 2],
+}
+
+impl MorphStructure {
+    /// The noise model: nothing to blend.
+    const NOISE: MorphStructure = MorphStructure {
+        info: [0; 4],
+        transform: [0.0; 4],
+        pose: [0.0; 4],
+        values: [[[0.0; 4]; 2]; 4],
+        ramp: [[[0.0; 4]; MAX_STOPS]; 2],
+        tone_range: [[0.0; 4]; 2],
+        tone: [[[0.0; 4]; MAX_TONE_KNOTS]; 2],
+    };
+
+    /// From pattern `p[0]` to `p[1]` (the same family; the same pattern in a cross-fade's half,
+    /// which then stays fixed), ramp `r[0]` to `r[1]` (`None`: the flat ramp at the blend's
+    /// mean colour, at the other's stops) and tone curve `t[0]` to `t[1]` (`None`: none).
+    fn new(
+        p: [&crate::pattern::Pattern; 2],
+        r: [Option<&Vec<crate::pattern::RampStop>>; 2],
+        t: [Option<crate::params::Tone>; 2],
+    ) -> MorphStructure {
+        use crate::morph::{ramp_table, ramp_union, shorter_turn, tone_grid};
+        use crate::pattern::ramp_rows;
+        let mut out = MorphStructure::NOISE;
+        let moves = !std::ptr::eq(p[0], p[1]);
+        let flags = moves as u32
+            | (r[0].is_none() as u32) << 1
+            | (r[1].is_none() as u32) << 2
+            | (t[0].is_none() as u32) << 3;
+        let (ra, rb) = match r {
+            [Some(a), Some(b)] => (a, b),
+            [Some(a), None] => (a, a),
+            [None, Some(b)] => (b, b),
+            [None, None] => unreachable!("a structured half has a ramp"),
+        };
+        let at = ramp_union(ra, rb);
+        let (ta, tb) = (ramp_table(ra), ramp_table(rb));
+        for (i, &x) in at.iter().enumerate() {
+            let (ca, cb) = (ramp_rows(&ta, x), ramp_rows(&tb, x));
+            out.ramp[0][i] = [ca[0], ca[1], ca[2], x];
+            out.ramp[1][i] = [cb[0], cb[1], cb[2], x];
+        }
+        let r0 = p[0].rotation_deg.to_radians();
+        let inv = 1.0 / p[0].scale;
+        out.transform = [inv, r0.cos(), r0.sin(), inv.log2()];
+        out.pose = [
+            p[0].scale.ln(),
+            p[0].rotation_deg,
+            shorter_turn(p[0].rotation_deg, p[1].rotation_deg),
+            p[1].scale.ln(),
+        ];
+        let (va, vb) = (p[0].vector(), p[1].vector());
+        for (i, spec) in p[0].kind.specs().iter().enumerate() {
+            let (row, col) = (i / 4, i % 4);
+            out.values[0][row][col] = va[i];
+            out.values[1][row][col] = vb[i];
+            out.values[2][row][col] = spec.min;
+            out.values[3][row][col] = spec.max;
+        }
+        let mut tone_knots = 0;
+        if t[0].is_some() || t[1].is_some() {
+            let grid = tone_grid(t[0].as_ref(), t[1].as_ref());
+            tone_knots = grid.n as u32;
+            for c in 0..3 {
+                let [lo, hi] = grid.range[c];
+                out.tone_range[0][c] = lo;
+                out.tone_range[1][c] = 1.0 / (hi - lo);
+                for k in 0..grid.n {
+                    out.tone[0][k][c] = grid.a[c][k];
+                    out.tone[1][k][c] = grid.b[c][k];
+                }
+            }
+        }
+        out.info = [p[0].kind.index(), at.len() as u32, tone_knots, flags];
+        out
+    }
+
+    /// The value of `struct MorphStructure` in `lang`.
+    fn value(&self, lang: Lang) -> String {
+        let arr2 = |a: &[[f32; 4]; 2]| lang.array(a.iter().copied(), 2);
+        format!(
+            "MorphStructure(\n    {},\n    {},\n    {},\n    {},\n    {},\n    {},\n    {},\n    {},\n    {},\n    {},\n    {},\n    {}\n)",
+            lang.uvec4(self.info),
+            lang.vec4(self.transform),
+            lang.vec4(self.pose),
+            arr2(&self.values[0]),
+            arr2(&self.values[1]),
+            arr2(&self.values[2]),
+            arr2(&self.values[3]),
+            lang.array(self.ramp[0].iter().copied(), MAX_STOPS),
+            lang.array(self.ramp[1].iter().copied(), MAX_STOPS),
+            arr2(&self.tone_range),
+            lang.array(self.tone[0].iter().copied(), MAX_TONE_KNOTS),
+            lang.array(self.tone[1].iter().copied(), MAX_TONE_KNOTS),
+        )
+    }
 }
 
 /// One end of a morph segment (struct `MorphKey` of `shaders/morph.wgsl`).
@@ -340,13 +518,6 @@ impl MorphTables {
         }
         for k in keys {
             k.validate()?;
-        }
-        if keys.iter().any(|k| k.model.pattern().is_some()) {
-            return Err(Error::Option(
-                "morph shaders of structured models are not available yet: export each key's \
-                 shader, or morph noise-model presets"
-                    .into(),
-            ));
         }
         if keys.iter().any(|k| k.solid != keys[0].solid) {
             return Err(Error::Option(
@@ -407,13 +578,19 @@ impl MorphTables {
                     w[0].solid as u32,
                     (ma.histogram.enabled || mb.histogram.enabled) as u32,
                 ];
-                ([end(&w[0], ma), end(&w[1], mb)], counts)
+                MorphSegment {
+                    ends: [end(&w[0], ma), end(&w[1], mb)],
+                    counts,
+                    structure: SegmentStructure::new(&w[0], &w[1]),
+                }
             })
             .collect();
+        let tile_n = if keys[0].solid { TILE_3D } else { TILE_2D } as f32;
         Ok(MorphTables {
             first: with_first_seed(&keys[0]),
             segments,
             ends,
+            pattern_offsets: crate::render::pattern_offsets(seed, tile_n),
         })
     }
 
@@ -432,21 +609,31 @@ impl MorphTables {
         let segments: Vec<String> = self
             .segments
             .iter()
-            .map(|(ends, counts)| {
+            .map(|seg| {
                 format!(
-                    "MorphSegment(\n{},\n{},\n{}\n)",
-                    key(&ends[0]),
-                    key(&ends[1]),
-                    lang.uvec4(*counts)
+                    "MorphSegment(\n{},\n{},\n{},\n{},\n{},\n{}\n)",
+                    key(&seg.ends[0]),
+                    key(&seg.ends[1]),
+                    lang.uvec4(seg.counts),
+                    lang.uvec4([seg.structure.mode, 0, 0, 0]),
+                    seg.structure.halves[0].value(lang),
+                    seg.structure.halves[1].value(lang),
                 )
             })
             .collect();
         let ends: Vec<String> = self.ends.iter().map(|p| params_value(p, lang)).collect();
         let offsets = offsets_array(&self.ends[0], lang);
+        let pattern_offsets = lang.array(
+            self.pattern_offsets.iter().map(|o| [o[0], o[1], o[2], 0.0]),
+            OCTAVES,
+        );
+        let seed = self.first.seed;
         let (s, e) = (segments.len(), ends.len());
         match lang {
             Lang::Wgsl => format!(
                 "const MORPH_SEGMENT_COUNT: u32 = {s}u;\n\
+                 const MORPH_SEED: u32 = {seed}u;\n\
+                 const MORPH_PATTERN_OFFSETS: array<vec4<f32>, {OCTAVES}> = {pattern_offsets};\n\
                  const MORPH_OFFSETS: array<vec4<f32>, {}> = {offsets};\n\
                  const MORPH_SEGMENTS: array<MorphSegment, {s}> = array<MorphSegment, {s}>(\n{}\n);\n\
                  const MORPH_ENDS: array<Params, {e}> = array<Params, {e}>(\n{}\n);\n",
@@ -456,6 +643,8 @@ impl MorphTables {
             ),
             Lang::Glsl => format!(
                 "const uint MORPH_SEGMENT_COUNT = {s}u;\n\
+                 const uint MORPH_SEED = {seed}u;\n\
+                 const vec4 MORPH_PATTERN_OFFSETS[{OCTAVES}] = {pattern_offsets};\n\
                  const vec4 MORPH_OFFSETS[{}] = {offsets};\n\
                  const MorphSegment MORPH_SEGMENTS[{s}] = MorphSegment[{s}](\n{}\n);\n\
                  const Params MORPH_ENDS[{e}] = Params[{e}](\n{}\n);\n",

@@ -294,7 +294,6 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
 /// evenly spaced inputs over the union of their ranges (the identity's is `[0, 1]`, outside
 /// which the output clamps anyway), as many knots as the finer one. The ends are exact.
 fn lerp_tones(a: Option<&Tone>, b: Option<&Tone>, t: f32) -> Option<Tone> {
-    use crate::params::MAX_TONE_KNOTS;
     match (a, b) {
         (None, None) => return None,
         (Some(a), _) if t <= 0.0 => return Some(a.clone()),
@@ -303,25 +302,63 @@ fn lerp_tones(a: Option<&Tone>, b: Option<&Tone>, t: f32) -> Option<Tone> {
         (_, None) if t >= 1.0 => return None,
         _ => {}
     }
+    let grid = tone_grid(a, b);
+    let mut out = Tone::identity(grid.n);
+    out.range = grid.range;
+    for c in 0..3 {
+        let mut prev = f32::NEG_INFINITY;
+        for (k, v) in out.knots[c].iter_mut().enumerate() {
+            // Rounding must not break monotonicity.
+            prev = lerp(grid.a[c][k], grid.b[c][k], t)
+                .clamp(-4.0, 4.0)
+                .max(prev);
+            *v = prev;
+        }
+    }
+    Some(out)
+}
+
+/// Where two tone curves blend ([`lerp_tones`]): the knot count, each channel's range, and both
+/// curves' values at the knots (`None` as the identity). The exported morph shader interpolates
+/// these tables (`shaders/morph.wgsl`).
+pub(crate) struct ToneGrid {
+    /// Knots per channel.
+    pub n: usize,
+    /// Per RGB channel: `[lo, hi]`.
+    pub range: [[f32; 2]; 3],
+    /// The first curve at the knots, per channel.
+    pub a: [Vec<f32>; 3],
+    /// The second curve at the knots, per channel.
+    pub b: [Vec<f32>; 3],
+}
+
+/// The grid [`lerp_tones`] blends `a` and `b` on.
+pub(crate) fn tone_grid(a: Option<&Tone>, b: Option<&Tone>) -> ToneGrid {
+    use crate::params::MAX_TONE_KNOTS;
     let count = |x: Option<&Tone>| x.map_or(2, |x| x.knots[0].len());
     let n = count(a).max(count(b)).clamp(2, MAX_TONE_KNOTS);
     let id = Tone::identity(2);
     let (a, b) = (a.unwrap_or(&id), b.unwrap_or(&id));
     let (ca, cb) = (a.curve(), b.curve());
-    let mut out = Tone::identity(n);
+    let mut range = [[0.0f32; 2]; 3];
+    let mut va: [Vec<f32>; 3] = Default::default();
+    let mut vb: [Vec<f32>; 3] = Default::default();
     for c in 0..3 {
         let lo = a.range[c][0].min(b.range[c][0]);
         let hi = a.range[c][1].max(b.range[c][1]).max(lo + 1e-4);
-        out.range[c] = [lo, hi];
-        let mut prev = f32::NEG_INFINITY;
-        for (k, v) in out.knots[c].iter_mut().enumerate() {
+        range[c] = [lo, hi];
+        for k in 0..n {
             let x = lo + (hi - lo) * k as f32 / (n - 1) as f32;
-            // Rounding must not break monotonicity.
-            prev = lerp(ca(c, x), cb(c, x), t).clamp(-4.0, 4.0).max(prev);
-            *v = prev;
+            va[c].push(ca(c, x));
+            vb[c].push(cb(c, x));
         }
     }
-    Some(out)
+    ToneGrid {
+        n,
+        range,
+        a: va,
+        b: vb,
+    }
 }
 
 /// Two ramps blended: both evaluated at the union of their stops (at most
@@ -331,13 +368,34 @@ fn lerp_ramps(
     b: &[crate::pattern::RampStop],
     t: f32,
 ) -> Vec<crate::pattern::RampStop> {
-    use crate::pattern::{MAX_STOPS, RampStop, ramp_rows};
-    let rows = |r: &[RampStop]| -> Vec<[f32; 4]> {
-        r.iter()
-            .map(|s| [s.rgb[0], s.rgb[1], s.rgb[2], s.at])
-            .collect()
-    };
-    let (ra, rb) = (rows(a), rows(b));
+    use crate::pattern::{RampStop, ramp_rows};
+    let (ra, rb) = (ramp_table(a), ramp_table(b));
+    ramp_union(a, b)
+        .iter()
+        .map(|&x| {
+            let (ca, cb) = (ramp_rows(&ra, x), ramp_rows(&rb, x));
+            RampStop {
+                at: x,
+                rgb: [0, 1, 2].map(|c| lerp(ca[c], cb[c], t).clamp(0.0, 1.0)),
+            }
+        })
+        .collect()
+}
+
+/// A ramp's stops as rows (RGB, at), as [`crate::pattern::ramp_rows`] takes them.
+pub(crate) fn ramp_table(r: &[crate::pattern::RampStop]) -> Vec<[f32; 4]> {
+    r.iter()
+        .map(|s| [s.rgb[0], s.rgb[1], s.rgb[2], s.at])
+        .collect()
+}
+
+/// The stops [`lerp_ramps`] evaluates both ramps at: the union of theirs, at most
+/// [`crate::pattern::MAX_STOPS`] (else that many evenly over the union's range), at least two.
+pub(crate) fn ramp_union(
+    a: &[crate::pattern::RampStop],
+    b: &[crate::pattern::RampStop],
+) -> Vec<f32> {
+    use crate::pattern::MAX_STOPS;
     let mut at: Vec<f32> = a.iter().chain(b).map(|s| s.at).collect();
     at.sort_by(f32::total_cmp);
     at.dedup();
@@ -350,15 +408,7 @@ fn lerp_ramps(
     if at.len() < 2 {
         at = vec![at.first().copied().unwrap_or(0.0), 1.0];
     }
-    at.iter()
-        .map(|&x| {
-            let (ca, cb) = (ramp_rows(&ra, x), ramp_rows(&rb, x));
-            RampStop {
-                at: x,
-                rgb: [0, 1, 2].map(|c| lerp(ca[c], cb[c], t).clamp(0.0, 1.0)),
-            }
-        })
-        .collect()
+    at
 }
 
 /// A morph through `keys` (two or more): `t ∈ [0, 1]` spread evenly over the segments.

@@ -108,12 +108,7 @@ impl Prepared {
             for (i, v) in pat.vector().into_iter().enumerate() {
                 p.pattern_values[i] = v;
             }
-            for k in 0..OCTAVES {
-                p.pattern_offsets[k] = [0, 1, 2].map(|a| {
-                    let f = rng::uniform(params.seed, rng::stream::PATTERN, (3 * k + a) as u32);
-                    offset_coeffs(f as f32, tile_n)
-                });
-            }
+            p.pattern_offsets = pattern_offsets(params.seed, tile_n);
             for i in 0..MAX_STOPS {
                 let stop = m.ramp[i.min(m.ramp.len() - 1)];
                 p.ramp[i] = [stop.rgb[0], stop.rgb[1], stop.rgb[2], stop.at];
@@ -271,6 +266,17 @@ impl Prepared {
 #[inline]
 pub fn offset_coeffs(f: f32, n: f32) -> f32 {
     (f * n).floor() + 0.5
+}
+
+/// The offsets of a pattern's noise octaves (in coefficients of a tile of side `tile_n`) for
+/// `seed`.
+pub fn pattern_offsets(seed: u32, tile_n: f32) -> [[f32; 3]; OCTAVES] {
+    std::array::from_fn(|k| {
+        [0, 1, 2].map(|a| {
+            let f = rng::uniform(seed, rng::stream::PATTERN, (3 * k + a) as u32);
+            offset_coeffs(f as f32, tile_n)
+        })
+    })
 }
 
 /// The random offset `o_cj` of channel `c`, band `j`, as fractions of the tile side.

@@ -159,8 +159,29 @@ fn exported_glsl_compiles_with_glslang() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A structured model of `kind` fitted to the brick photo at pattern scale `scale`, rotated by
+/// `rotation_deg`.
+fn fitted(
+    kind: proctex::pattern::PatternKind,
+    scale: f32,
+    rotation_deg: f32,
+) -> proctex::params::Params {
+    let brick = sample("skimage_brick_512.png").reduced(128).unwrap();
+    let mut pattern = proctex::pattern::Pattern::new(kind, scale);
+    pattern.rotation_deg = rotation_deg;
+    proctex::structure::fit_structured(
+        proctex::db::Db::shipped(),
+        &brick,
+        &pattern,
+        &Options::default(),
+        false,
+    )
+    .params
+}
+
 /// Morphs through the samples: two plane keys, three plane keys (histograms off in one), two
-/// solid keys.
+/// solid keys; and through structured models: one family (brick to brick), across families and
+/// the noise model (brick, noise, cells, rings), two solid ones.
 fn every_morph() -> Vec<(String, Vec<proctex::params::Params>)> {
     let key = |i: usize| {
         analyze_photo(&sample(SAMPLES[i]), &Options::default())
@@ -180,6 +201,29 @@ fn every_morph() -> Vec<(String, Vec<proctex::params::Params>)> {
         ("morph-2".into(), vec![a.clone(), b.clone()]),
         ("morph-3".into(), vec![a.clone(), b.clone(), c_flat]),
         ("morph-solid".into(), vec![solid(&b), solid(&c)]),
+        (
+            "morph-brick".into(),
+            vec![
+                fitted(proctex::pattern::PatternKind::Brick, 12.0, 0.0),
+                fitted(proctex::pattern::PatternKind::Brick, 20.0, 350.0),
+            ],
+        ),
+        (
+            "morph-families".into(),
+            vec![
+                fitted(proctex::pattern::PatternKind::Brick, 12.0, 0.0),
+                a.clone(),
+                fitted(proctex::pattern::PatternKind::Cells, 16.0, 30.0),
+                fitted(proctex::pattern::PatternKind::Rings, 10.0, 0.0),
+            ],
+        ),
+        (
+            "morph-structured-solid".into(),
+            vec![
+                solid(&fitted(proctex::pattern::PatternKind::Rings, 10.0, 0.0)),
+                solid(&fitted(proctex::pattern::PatternKind::Cells, 16.0, 30.0)),
+            ],
+        ),
     ]
 }
 

@@ -92,14 +92,20 @@ for (const [lang, hostPage] of HOSTS) {
   });
 }
 
-// Two presets (rock and grass) ticked for a morph, t dragged to the middle with the mouse.
-async function morphHalfway(page) {
+// Two presets ticked for a morph (rock and grass; or brick, a structured model, and grass),
+// t dragged towards the middle with the mouse.
+async function morphHalfway(page, structured = false) {
   await openApp(page);
+  if (structured) {
+    await suggestionsFor(page, 'skimage_brick_512.png');
+    expect(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model.kind).toBe('structured');
+  }
   await morphRockToGrass(page);
   const [x, y, w, h] = (await state(page)).widgets['morph.t'];
   await page.mouse.move(x + 3, y + h / 2);
   await page.mouse.down();
-  await page.mouse.move(x + Math.min(60, w / 3), y + h / 2, { steps: 4 });
+  // Structured: to about t = 0.3, inside the first half, where the brick pattern still shows.
+  await page.mouse.move(x + Math.min(structured ? 30 : 60, w / 3), y + h / 2, { steps: 4 });
   await page.mouse.up();
   await waitFrames(page, 2);
   const t = (await state(page)).morph_t;
@@ -108,16 +114,22 @@ async function morphHalfway(page) {
   return t;
 }
 
-for (const [lang, hostPage] of HOSTS) {
-  test(`the exported ${lang.toUpperCase()} morph renders the app's morph at the slider's t`, async ({ page }) => {
+for (const [lang, hostPage, structured] of [...HOSTS.map(([l, h]) => [l, h, false]), ...HOSTS.map(([l, h]) => [l, h, true])]) {
+  const what = structured ? 'a structured model to the noise model' : 'two noise models';
+  test(`the exported ${lang.toUpperCase()} morph of ${what} renders the app's morph at the slider's t`, async ({ page }) => {
     // Two analyses with their suggestions, then the host page compiles and runs a shader that
     // rebuilds the params per pixel: 1.6–2.6 min on the 2-core SwiftShader machine, too close
     // to the default 3 min (both timed out once while other jobs shared the machine).
     test.setTimeout(360_000);
     const size = 128;
-    const t = await morphHalfway(page);
+    const t = await morphHalfway(page, structured);
     const { app, src, offset } = await appViewAndSnippet(page, lang, size, 'morph');
     expect(src).toContain('proctex_t');
+    if (structured) {
+      // The brick key's pattern fades out through the first half of the segment.
+      expect(t).toBeLessThan(0.5);
+      expect(src).toContain('MorphStructure(');
+    }
     expectSame(`morph ${lang} at t = ${t.toFixed(3)}`, app, await hostImage(page, hostPage, src, size, offset, t));
     // And t = 0 in the host is the first preset, not the blend.
     const start = await hostImage(page, hostPage, src, size, offset, 0);

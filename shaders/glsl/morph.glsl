@@ -1,6 +1,7 @@
 // Morphing between textures with t as a uniform (GLSL twin of shaders/morph.wgsl; Rust twins in
 // analyzer/src/morph.rs and analyzer/src/histogram.rs). Same operation order, 32-bit floats.
-// Generated constants: MORPH_SEGMENT_COUNT, MORPH_SEGMENTS, MORPH_ENDS, MORPH_OFFSETS.
+// Generated constants: MORPH_SEGMENT_COUNT, MORPH_SEGMENTS, MORPH_ENDS, MORPH_OFFSETS,
+// MORPH_SEED, MORPH_PATTERN_OFFSETS. Structured models as in morph.wgsl.
 
 struct MorphKey {
     vec4 mean;          // mean RGB, contrast
@@ -10,10 +11,31 @@ struct MorphKey {
     vec4 knots[33];     // [knot] -> inverse-CDF knot of channels 0, 1, 2 (segment's count)
 };
 
+// The structured model along (a half of) a segment, from u = 0 to u = 1.
+struct MorphStructure {
+    uvec4 info;         // kind (0: noise model), ramp stops, tone knots (0: none), flags: 1 the
+                        // pattern interpolates, 2 / 4 the ramp at u = 0 / 1 is the flat mean
+                        // colour, 8 no tone curve at u = 0
+    vec4 transform;     // the fixed pattern's transform
+    vec4 pose;          // ln(scale) at 0, rotation at 0 (degrees), turn (degrees), ln(scale) at 1
+    vec4 values_a[2];   // structural values at u = 0
+    vec4 values_b[2];   // at u = 1
+    vec4 value_min[2];  // their ranges
+    vec4 value_max[2];
+    vec4 ramp_a[16];    // [stop] -> ramp at u = 0 (RGB, at), at the union of both ramps' stops
+    vec4 ramp_b[16];    // at u = 1
+    vec4 tone_range[2]; // the blended tone curve's lo (RGB) and 1 / (hi - lo)
+    vec4 tone_a[33];    // [knot] -> both tone curves on the blend's grid
+    vec4 tone_b[33];
+};
+
 struct MorphSegment {
     MorphKey a;
     MorphKey b;
     uvec4 counts;       // bands, knots, solid (0/1), histogram (0/1) of the blend
+    uvec4 mode;         // x: 0 noise models, 1 one pattern family, 2 a cross-fade
+    MorphStructure first;
+    MorphStructure second;
 };
 
 // (generated constants)
@@ -80,6 +102,62 @@ vec4[33] fc_tangents(vec4 knots[33], uint count) {
     return m;
 }
 
+// The ramp of `st` at u (stops past the count repeat the last).
+void lerp_ramps(MorphStructure st, float u, inout Params p) {
+    vec3 mean = p.mean.xyz;
+    uint n = st.info.y;
+    for (uint i = 0u; i < 16u; i++) {
+        uint j = min(i, n - 1u);
+        vec3 a = (st.info.w & 2u) != 0u ? mean : st.ramp_a[j].xyz;
+        vec3 b = (st.info.w & 4u) != 0u ? mean : st.ramp_b[j].xyz;
+        p.ramp[i] = vec4(clamp(a + u * (b - a), vec3(0.0), vec3(1.0)), st.ramp_a[j].w);
+    }
+}
+
+// The output tone curve of `st` at u: knots blended, clamped, kept non-decreasing.
+void lerp_tones(MorphStructure st, float u, inout Params p) {
+    uint k = st.info.z;
+    if (k == 0u || (u <= 0.0 && (st.info.w & 8u) != 0u)) {
+        return;
+    }
+    p.pattern.w = k;
+    p.tone_range = st.tone_range;
+    for (uint i = 0u; i < k; i++) {
+        vec4 v = clamp(st.tone_a[i] + u * (st.tone_b[i] - st.tone_a[i]), vec4(-4.0), vec4(4.0));
+        if (i > 0u) {
+            // Rounding must not break monotonicity.
+            v = max(v, p.tone_knots[i - 1u]);
+        }
+        p.tone_knots[i] = v;
+    }
+    p.tone_tangents = fc_tangents(p.tone_knots, k);
+}
+
+// The pattern, ramp and tone curve a fraction u of the way through `st`.
+void morph_structure(MorphStructure st, float u, inout Params p) {
+    uint kind = st.info.x;
+    if (kind == 0u) {
+        return;
+    }
+    p.pattern = uvec4(kind, st.info.y, MORPH_SEED, 0u);
+    p.pattern_offsets = MORPH_PATTERN_OFFSETS;
+    if ((st.info.w & 1u) != 0u) {
+        float scale = exp(st.pose.x * (1.0 - u) + st.pose.w * u);
+        float angle = radians(st.pose.y + u * st.pose.z);
+        float inv = 1.0 / scale;
+        p.pattern_transform = vec4(inv, cos(angle), sin(angle), log2(inv));
+        for (int i = 0; i < 2; i++) {
+            vec4 v = st.values_a[i] + u * (st.values_b[i] - st.values_a[i]);
+            p.pattern_values[i] = clamp(v, st.value_min[i], st.value_max[i]);
+        }
+    } else {
+        p.pattern_transform = st.transform;
+        p.pattern_values = st.values_a;
+    }
+    lerp_ramps(st, u, p);
+    lerp_tones(st, u, p);
+}
+
 Params morph(MorphSegment seg, float t) {
     MorphKey a = seg.a;
     MorphKey b = seg.b;
@@ -112,6 +190,31 @@ Params morph(MorphSegment seg, float t) {
         p.knots[k] = v;
     }
     p.tangents = fc_tangents(p.knots, seg.counts.y);
+    p.pattern = uvec4(0u, 0u, MORPH_SEED, 0u);
+    p.pattern_transform = vec4(1.0, 1.0, 0.0, 0.0);
+    for (int i = 0; i < 2; i++) {
+        p.pattern_values[i] = vec4(0.0);
+        p.tone_range[i] = vec4(0.0);
+    }
+    for (int i = 0; i < 5; i++) {
+        p.pattern_offsets[i] = vec4(0.0);
+    }
+    for (int i = 0; i < 16; i++) {
+        p.ramp[i] = vec4(0.0);
+    }
+    for (int i = 0; i < MAX_TONE_KNOTS; i++) {
+        p.tone_knots[i] = vec4(0.0);
+        p.tone_tangents[i] = vec4(0.0);
+    }
+    if (seg.mode.x == 1u) {
+        morph_structure(seg.first, t, p);
+    } else if (seg.mode.x == 2u) {
+        if (t < 0.5) {
+            morph_structure(seg.first, 2.0 * t, p);
+        } else {
+            morph_structure(seg.second, 2.0 * t - 1.0, p);
+        }
+    }
     return p;
 }
 

@@ -230,7 +230,9 @@ pub fn shaders() -> Vec<(&'static str, String)> {
                     "const MORPH_SEGMENT_COUNT: u32 = 1u;\n\
                      const MORPH_SEGMENTS = array<MorphSegment, 1>(MorphSegment());\n\
                      const MORPH_ENDS = array<Params, 2>(Params(), Params());\n\
-                     const MORPH_OFFSETS = array<vec4<f32>, 36>();",
+                     const MORPH_OFFSETS = array<vec4<f32>, 36>();\n\
+                     const MORPH_SEED: u32 = 1u;\n\
+                     const MORPH_PATTERN_OFFSETS = array<vec4<f32>, 5>();",
                     MORPH,
                     ATLAS3,
                     TILE3_ATLAS,

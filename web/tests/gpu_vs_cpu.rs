@@ -664,6 +664,56 @@ fn exported_morph_renders_the_cpu_morph() {
     }
 }
 
+/// The exported morph through structured models equals the CPU's morph along t: one family
+/// (brick to brick: pattern, ramp and tone curve interpolate), then across families and the
+/// noise model (cross-fades through the flat ramp), plane and solid.
+#[test]
+fn exported_structured_morph_renders_the_cpu_morph() {
+    use proctex::pattern::PatternKind;
+    let gpu = gpu();
+    let rock = sample_params("stk_rock_mountain_512.png");
+    let gravel = sample_params("skimage_gravel_512.png");
+    let brick_a = structured(&rock, PatternKind::Brick);
+    let mut brick_b = structured(&gravel, PatternKind::Brick);
+    if let proctex::params::Model::Structured(m) = &mut brick_b.model {
+        m.pattern.scale = 17.0;
+        m.pattern.rotation_deg = 340.0;
+        m.pattern.set("aspect", 3.0);
+        m.pattern.set("mortar", 0.2);
+        m.tone = None;
+        m.ramp.truncate(2);
+    }
+    let cells = structured(&gravel, PatternKind::Cells);
+    let keys = vec![brick_a, brick_b, gravel, cells];
+    let src = proctex::export::morph_wgsl(&keys).unwrap();
+    for t in [0.1f32, 0.3, 0.45, 0.5, 0.9] {
+        let params = proctex::morph::morph_path(&keys, t).unwrap();
+        exported_wgsl_matches_cpu(
+            &gpu,
+            &format!("structured morph of 4, t = {t}"),
+            &src,
+            &params,
+            Some(t),
+        );
+    }
+    let mut rings = structured(&rock, PatternKind::Rings);
+    rings.solid = true;
+    let mut cells = structured(&rock, PatternKind::Cells);
+    cells.solid = true;
+    let keys = vec![rings, cells];
+    let src = proctex::export::morph_wgsl(&keys).unwrap();
+    for t in [0.3f32, 0.7] {
+        let params = proctex::morph::morph_path(&keys, t).unwrap();
+        exported_wgsl_matches_cpu(
+            &gpu,
+            &format!("solid structured morph, t = {t}"),
+            &src,
+            &params,
+            Some(t),
+        );
+    }
+}
+
 fn exported_wgsl_matches_cpu(gpu: &Gpu, name: &str, src: &str, params: &Params, t: Option<f32>) {
     let module = gpu
         .device
