@@ -358,7 +358,8 @@ impl SegmentStructure {
                     mode: 1,
                     halves: [
                         MorphStructure::new(
-                            [&sa.pattern, &sb.pattern],
+                            Some([&sa.pattern, &sb.pattern]),
+                            &sa.pattern,
                             [Some(&sa.ramp), Some(&sb.ramp)],
                             [tone(sa), tone(sb)],
                         ),
@@ -369,7 +370,8 @@ impl SegmentStructure {
             (ma, mb) => {
                 let first = match ma {
                     Model::Structured(sa) => MorphStructure::new(
-                        [&sa.pattern, &sa.pattern],
+                        None,
+                        &sa.pattern,
                         [Some(&sa.ramp), None],
                         [tone(sa), None],
                     ),
@@ -377,7 +379,8 @@ impl SegmentStructure {
                 };
                 let second = match mb {
                     Model::Structured(sb) => MorphStructure::new(
-                        [&sb.pattern, &sb.pattern],
+                        None,
+                        &sb.pattern,
                         [None, Some(&sb.ramp)],
                         [None, tone(sb)],
                     ),
@@ -417,19 +420,21 @@ impl MorphStructure {
         tone: [[[0.0; 4]; MAX_TONE_KNOTS]; 2],
     };
 
-    /// From pattern `p[0]` to `p[1]` (the same family; the same pattern in a cross-fade's half,
-    /// which then stays fixed), ramp `r[0]` to `r[1]` (`None`: the flat ramp at the blend's
-    /// mean colour, at the other's stops) and tone curve `t[0]` to `t[1]` (`None`: none).
+    /// From pattern `moving[0]` to `moving[1]` (the same family; `None` in a cross-fade's half,
+    /// whose pattern is `fixed` all the way), ramp `r[0]` to `r[1]` (`None`: the flat ramp at
+    /// the blend's mean colour, at the other's stops) and tone curve `t[0]` to `t[1]` (`None`:
+    /// none).
     fn new(
-        p: [&crate::pattern::Pattern; 2],
+        moving: Option<[&crate::pattern::Pattern; 2]>,
+        fixed: &crate::pattern::Pattern,
         r: [Option<&Vec<crate::pattern::RampStop>>; 2],
         t: [Option<crate::params::Tone>; 2],
     ) -> MorphStructure {
         use crate::morph::{ramp_table, ramp_union, shorter_turn, tone_grid};
         use crate::pattern::ramp_rows;
         let mut out = MorphStructure::NOISE;
-        let moves = !std::ptr::eq(p[0], p[1]);
-        let flags = moves as u32
+        let p = moving.unwrap_or([fixed, fixed]);
+        let flags = moving.is_some() as u32
             | (r[0].is_none() as u32) << 1
             | (r[1].is_none() as u32) << 2
             | (t[0].is_none() as u32) << 3;
