@@ -1,7 +1,7 @@
 // Wavelet noise evaluation and band clamping (noise3 reads the 3D tile through tile3_side and
 // tile3_texel: tile3.wgsl or tile3_atlas.wgsl). Twins: analyzer/src/noise.rs
-// (bspline_weights, noise2, noise3, band_fade; wrap_coord and wrap_index are private helpers
-// there). Same operation order, f32.
+// (bspline_weights, noise2, wrap_period, whole_period, noise2_periodic, noise3, band_fade;
+// wrap_coord and wrap_index are private helpers there). Same operation order, f32.
 
 struct BWeights {
     mid: i32,
@@ -38,6 +38,46 @@ fn noise2(p: vec2<f32>) -> f32 {
     var sum = 0.0;
     for (var dy = 0; dy < 3; dy++) {
         let row = wrap_index(by.mid + dy - 1, ni);
+        var line = 0.0;
+        for (var dx = 0; dx < 3; dx++) {
+            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).r;
+        }
+        sum += by.w[dy] * line;
+    }
+    return sum;
+}
+
+// i mod m for any m >= 1 (a wrapped period need not be a power of two).
+fn wrap_period(i: i32, m: i32) -> i32 {
+    return ((i % m) + m) % m;
+}
+
+// The whole number of coefficients nearest m that a band of a tile of side n can repeat with
+// (floor(x + 0.5): WGSL's round() rounds halves to even, the Rust twin's f32::round away).
+fn whole_period(m: f32, n: f32) -> f32 {
+    if (m < n) {
+        return max(floor(m + 0.5), 1.0);
+    }
+    return n * floor(m / n + 0.5);
+}
+
+// One 2D band with its coefficient indices wrapped at min(period, n) per axis: periodic with
+// period when each is a whole number (seamless tiles).
+fn noise2_periodic(p: vec2<f32>, period: vec2<f32>) -> f32 {
+    let nf = f32(textureDimensions(tile2).x);
+    let pw = vec2<f32>(min(period.x, nf), min(period.y, nf));
+    let px = i32(pw.x);
+    let py = i32(pw.y);
+    let bx = bspline_weights(wrap_coord(p.x, pw.x));
+    let by = bspline_weights(wrap_coord(p.y, pw.y));
+    let cols = vec3<i32>(
+        wrap_period(bx.mid - 1, px),
+        wrap_period(bx.mid, px),
+        wrap_period(bx.mid + 1, px),
+    );
+    var sum = 0.0;
+    for (var dy = 0; dy < 3; dy++) {
+        let row = wrap_period(by.mid + dy - 1, py);
         var line = 0.0;
         for (var dx = 0; dx < 3; dx++) {
             line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).r;

@@ -1,7 +1,8 @@
 // Structured models: the pattern's structure value s ∈ [0, 1] at a texel, and the colour ramp
-// along s. Twins: analyzer/src/pattern.rs (soft_step, cell_hash, octave, octaves,
-// joint_distance, pattern, ramp). Same operation order, f32. Needs hash.wgsl (the cell
-// hashes) and noise.wgsl (the octaves read the texture's own noise tile).
+// along s. Twins: analyzer/src/pattern.rs (soft_step, cell_hash, wrap_cell, wrap_cells,
+// cell_hash_wrapped, octave, octaves, joint_distance, pattern, pattern_at, ramp). Same
+// operation order, f32. Needs hash.wgsl (the cell hashes) and noise.wgsl (the octaves read
+// the texture's own noise tile).
 
 const PATTERN_OCTAVES: u32 = 5u;
 // rng::stream::CELLS
@@ -17,25 +18,53 @@ fn cell_hash(ix: i32, iy: i32, k: u32) -> f32 {
     return uniform01(params.pattern.z, CELLS_STREAM, index);
 }
 
-fn octave(q: vec3<f32>, k: u32) -> f32 {
+// Cell index i wrapped at n cells (a seamless tile's lattice); i itself for n = 0.
+fn wrap_cell(i: i32, n: i32) -> i32 {
+    if (n > 0) {
+        return ((i % n) + n) % n;
+    }
+    return i;
+}
+
+// The whole number of cells of width pitch (and rows of height 1) that the periods wrap hold;
+// (0, 0) (no wrap) for wrap.x = 0.
+fn wrap_cells(pitch: f32, wrap: vec2<f32>) -> vec2<i32> {
+    if (wrap.x > 0.0) {
+        return vec2<i32>(i32(floor(wrap.x / pitch + 0.5)), i32(floor(wrap.y + 0.5)));
+    }
+    return vec2<i32>(0, 0);
+}
+
+fn cell_hash_wrapped(ix: i32, iy: i32, k: u32, cells: vec2<i32>) -> f32 {
+    return cell_hash(wrap_cell(ix, cells.x), wrap_cell(iy, cells.y), k);
+}
+
+// Octave k at q; with per.x > 0 (seamless tiles, plane textures) q repeats with period per and
+// the octave's frequency moves to a whole number of coefficients over it.
+fn octave(q: vec3<f32>, k: u32, per: vec2<f32>) -> f32 {
     let f = f32(1u << k);
     let o = params.pattern_offsets[k].xyz;
     if (params.counts.z != 0u) {
         return noise3(vec3<f32>(q.x * f + o.x, q.y * f + o.y, q.z * f + o.z));
+    }
+    if (per.x > 0.0) {
+        let n = f32(textureDimensions(tile2).x);
+        let m = vec2<f32>(whole_period(per.x * f, n), whole_period(per.y * f, n));
+        return noise2_periodic(vec2<f32>(q.x / per.x * m.x + o.x, q.y / per.y * m.y + o.y), m);
     }
     return noise2(vec2<f32>(q.x * f + o.x, q.y * f + o.y));
 }
 
 // The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or exp(−sharpness·|n|) (2,
 // ridged).
-fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32) -> f32 {
+fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32, per: vec2<f32>) -> f32 {
     var sum = 0.0;
     var norm = 0.0;
     var amp = 1.0;
     for (var k = 0u; k < PATTERN_OCTAVES; k++) {
         let fade = band_fade(0u, lfp + f32(k));
         if (fade > 0.0) {
-            let n = octave(q, k);
+            let n = octave(q, k, per);
             var v = n;
             if (mode == 1u) {
                 v = abs(n);
@@ -67,46 +96,66 @@ fn pattern(u: vec3<f32>, log2_fp: f32) -> f32 {
     let c = xf.y;
     let s = xf.z;
     let q = vec3<f32>((c * u.x + s * u.y) * is, (-s * u.x + c * u.y) * is, u.z * is);
-    let lfp = log2_fp + xf.w;
+    return pattern_at(q, log2_fp + xf.w, vec2<f32>(0.0, 0.0));
+}
+
+// The structure value at pattern point q; wrap (0: none) makes it repeat with period wrap
+// along the pattern's axes (seamless tiles; see analyzer/src/pattern.rs pattern_at).
+fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
+    let c = params.pattern_transform.y;
+    let s = params.pattern_transform.z;
     let w0 = params.pattern_values[0];
     let w1 = params.pattern_values[1];
     let soft = exp2(lfp);
     switch (params.pattern.x) {
         // perlin: stretch, roughness, contrast, threshold
         case 1u: {
-            let n = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 0u, 0.0, lfp);
+            let per = vec2<f32>(wrap.x / w0.x, wrap.y);
+            let n = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 0u, 0.0, lfp, per);
             return 1.0 / (1.0 + exp(-w0.z * (n - w0.w)));
         }
         // turbulence: stretch, roughness, contrast
         case 2u: {
-            let t = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 1u, 0.0, lfp);
+            let per = vec2<f32>(wrap.x / w0.x, wrap.y);
+            let t = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 1u, 0.0, lfp, per);
             return 1.0 - exp(-w0.z * t);
         }
         // ridged: stretch, roughness, sharpness
         case 3u: {
-            return octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 2u, w0.z, lfp);
+            let per = vec2<f32>(wrap.x / w0.x, wrap.y);
+            return octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 2u, w0.z, lfp, per);
         }
         // grid: aspect, mortar, bevel, variation
         case 4u: {
+            let n = wrap_cells(w0.x, wrap);
             let x = q.x / w0.x;
             let ix = floor(x);
             let iy = floor(q.y);
             let d = joint_distance(x - ix, q.y - iy, w0.x);
-            let shade = 1.0 - w0.w * cell_hash(i32(ix), i32(iy), 0u);
+            let shade = 1.0 - w0.w * cell_hash_wrapped(i32(ix), i32(iy), 0u, n);
             return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;
         }
         // brick: aspect, mortar, row_offset, jitter, bevel, variation
         case 5u: {
+            let n = wrap_cells(w0.x, wrap);
             let iy = floor(q.y);
-            let shift = iy * w0.z + w0.w * (cell_hash(0, i32(iy), 1u) - 0.5);
+            var row = iy;
+            var offset = w0.z;
+            if (n.y > 0) {
+                let rows = f32(n.y);
+                row = f32(wrap_cell(i32(iy), n.y));
+                offset = floor(w0.z * rows + 0.5) / rows;
+            }
+            let shift = row * offset + w0.w * (cell_hash(0, i32(row), 1u) - 0.5);
             let x = q.x / w0.x + shift;
             let ix = floor(x);
             let d = joint_distance(x - ix, q.y - iy, w0.x);
-            let shade = 1.0 - w1.y * cell_hash(i32(ix), i32(iy), 0u);
+            let shade = 1.0 - w1.y * cell_hash_wrapped(i32(ix), i32(iy), 0u, n);
             return soft_step(0.5 * w0.y, max(w1.x, soft), d) * shade;
         }
         // cells: jitter, mortar, bevel, variation, stretch
         case 6u: {
+            let n = wrap_cells(w1.x, wrap);
             let p = vec2<f32>(q.x / w1.x, q.y);
             let ix = floor(p.x);
             let iy = floor(p.y);
@@ -118,8 +167,8 @@ fn pattern(u: vec3<f32>, log2_fp: f32) -> f32 {
                 for (var dx = -1; dx <= 1; dx++) {
                     let cx = i32(ix) + dx;
                     let cy = i32(iy) + dy;
-                    let px = f32(dx) + 0.5 + w0.x * (cell_hash(cx, cy, 0u) - 0.5);
-                    let py = f32(dy) + 0.5 + w0.x * (cell_hash(cx, cy, 1u) - 0.5);
+                    let px = f32(dx) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 0u, n) - 0.5);
+                    let py = f32(dy) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 1u, n) - 0.5);
                     let ex = px - f.x;
                     let ey = py - f.y;
                     let d = ex * ex + ey * ey;
@@ -133,31 +182,44 @@ fn pattern(u: vec3<f32>, log2_fp: f32) -> f32 {
                 }
             }
             let edge = 0.5 * (sqrt(f2) - sqrt(f1));
-            let shade = 1.0 - w0.w * cell_hash(id.x, id.y, 2u);
+            let shade = 1.0 - w0.w * cell_hash_wrapped(id.x, id.y, 2u, n);
             return soft_step(0.5 * w0.y, max(w0.z, soft), edge) * shade;
         }
         // planks: length, gap, bevel, variation, grain
         case 7u: {
+            let n = wrap_cells(w0.x, wrap);
             let iy = floor(q.y);
-            let x = q.x / w0.x + cell_hash(0, i32(iy), 1u);
+            let x = q.x / w0.x + cell_hash_wrapped(0, i32(iy), 1u, vec2<i32>(0, n.y));
             let ix = floor(x);
             let d = joint_distance(x - ix, q.y - iy, w0.x);
-            let n = octaves(vec3<f32>(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0);
-            let shade = (1.0 - w0.w * cell_hash(i32(ix), i32(iy), 0u))
-                * (1.0 - w1.x * (0.5 + 0.5 * tanh(n)));
+            let per = vec2<f32>(wrap.x * 0.125, wrap.y * 4.0);
+            let g = octaves(vec3<f32>(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0, per);
+            let shade = (1.0 - w0.w * cell_hash_wrapped(i32(ix), i32(iy), 0u, n))
+                * (1.0 - w1.x * (0.5 + 0.5 * tanh(g)));
             return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;
         }
         // wood lines: stretch, distortion, sharpness, roughness
         case 8u: {
-            let n = octaves(vec3<f32>(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0, lfp - 2.0);
+            let per = vec2<f32>(0.25 * wrap.x / w0.x, 0.25 * wrap.y);
+            let n = octaves(
+                vec3<f32>(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0, lfp - 2.0, per,
+            );
             let v = q.y + w0.y * n;
             return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), w0.z);
         }
-        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y
+        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y; with wrap, the
+        // torus distance to the centre
         case 9u: {
             let qc = vec2<f32>(c * w1.x + s * w1.y, -s * w1.x + c * w1.y);
-            let p = vec3<f32>((q.x - qc.x) / w0.w, q.y - qc.y, q.z);
-            let n = octaves(vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0);
+            var p = vec3<f32>((q.x - qc.x) / w0.w, q.y - qc.y, q.z);
+            let per = vec2<f32>(wrap.x / w0.w, wrap.y);
+            if (wrap.x > 0.0) {
+                p.x -= per.x * floor(p.x / per.x + 0.5);
+                p.y -= per.y * floor(p.y / per.y + 0.5);
+            }
+            let n = octaves(
+                vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0, 0.25 * per,
+            );
             let r = sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
             return pow(max(0.5 + 0.5 * sin(6.2831855 * r), 1e-6), w0.y);
         }

@@ -1,6 +1,7 @@
 // Seamless tiles (the PNG tile export): every band made periodic over the tile. Twins:
-// analyzer/src/seamless.rs (wrap_period, noise2_wrapped, channel_noise_wrapped,
-// seamless_pixel; the entry points' twin is render_rows). Same operation order, f32.
+// analyzer/src/seamless.rs (channel_noise_wrapped, pattern_wrapped, seamless_pixel; the entry
+// points' twin is render_rows). Same operation order, f32. Periodic noise: noise2_periodic
+// (noise.wgsl); periodic patterns: pattern_at (pattern.wgsl).
 // Renders in strips: the target is `size` wide and a few rows high, `first_row` says which.
 
 struct Seamless {
@@ -8,35 +9,12 @@ struct Seamless {
     periods: array<vec4<f32>, 3>,
     // size (pixels), log2 footprint, first row of this strip, unused
     tile: vec4<f32>,
+    // structured models: the pattern's periods over the tile along its axes, cos and sin of
+    // its rotation moved to a quarter turn
+    pattern: vec4<f32>,
 }
 
 @group(1) @binding(0) var<uniform> seamless: Seamless;
-
-fn wrap_period(i: i32, m: i32) -> i32 {
-    return ((i % m) + m) % m;
-}
-
-fn noise2_wrapped(p: vec2<f32>, period: f32) -> f32 {
-    let pw = min(period, f32(textureDimensions(tile2).x));
-    let pi = i32(pw);
-    let bx = bspline_weights(wrap_coord(p.x, pw));
-    let by = bspline_weights(wrap_coord(p.y, pw));
-    let cols = vec3<i32>(
-        wrap_period(bx.mid - 1, pi),
-        wrap_period(bx.mid, pi),
-        wrap_period(bx.mid + 1, pi),
-    );
-    var sum = 0.0;
-    for (var dy = 0; dy < 3; dy++) {
-        let row = wrap_period(by.mid + dy - 1, pi);
-        var line = 0.0;
-        for (var dx = 0; dx < 3; dx++) {
-            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).r;
-        }
-        sum += by.w[dy] * line;
-    }
-    return sum;
-}
 
 fn channel_noise_wrapped(c: u32, a: vec2<f32>) -> f32 {
     var sum = 0.0;
@@ -47,19 +25,29 @@ fn channel_noise_wrapped(c: u32, a: vec2<f32>) -> f32 {
         }
         let m = seamless.periods[j / 4u][j % 4u];
         let o = params.offsets[c * MAX_BANDS + j].xyz;
-        sum += w * noise2_wrapped(vec2<f32>(a.x * m + o.x, a.y * m + o.y), m);
+        sum += w * noise2_periodic(vec2<f32>(a.x * m + o.x, a.y * m + o.y), vec2<f32>(m, m));
     }
     return sum;
+}
+
+fn pattern_wrapped(a: vec2<f32>) -> f32 {
+    let xf = seamless.pattern;
+    let q = vec3<f32>(xf.x * (xf.z * a.x + xf.w * a.y), xf.y * (-xf.w * a.x + xf.z * a.y), 0.0);
+    return pattern_at(q, seamless.tile.y + params.pattern_transform.w, xf.xy);
 }
 
 fn seamless_pixel(frag: vec2<f32>) -> vec3<f32> {
     let size = seamless.tile.x;
     let a = vec2<f32>(frag.x / size, (frag.y + seamless.tile.z) / size);
+    var base = params.mean.xyz;
+    if (params.pattern.x != 0u) {
+        base = ramp(pattern_wrapped(a));
+    }
     return colour(vec3<f32>(
         channel_noise_wrapped(0u, a),
         channel_noise_wrapped(1u, a),
         channel_noise_wrapped(2u, a),
-    ), params.mean.xyz);
+    ), base);
 }
 
 @vertex

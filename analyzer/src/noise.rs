@@ -268,6 +268,46 @@ pub fn noise2(tile: &[f32], n: usize, p: [f32; 2]) -> f32 {
     sum
 }
 
+/// `i mod m` for any `m ≥ 1` (a wrapped period need not be a power of two).
+#[inline]
+pub fn wrap_period(i: i32, m: i32) -> usize {
+    i.rem_euclid(m) as usize
+}
+
+/// The whole number of coefficients nearest `m` that a band of a tile of side `n` can repeat
+/// with: at least 1, and a multiple of `n` when `m ≥ n` (the band already repeats every `n`
+/// coefficients). Halves round up (`floor(x + 0.5)`: WGSL's `round` rounds them to even).
+#[inline]
+pub fn whole_period(m: f32, n: f32) -> f32 {
+    if m < n {
+        (m + 0.5).floor().max(1.0)
+    } else {
+        n * (m / n + 0.5).floor()
+    }
+}
+
+/// One 2D band at `p` (coefficient units) with its coefficient indices wrapped at
+/// `min(period, n)` per axis: periodic with `period` (per axis) when each is a whole number
+/// (see [`whole_period`]). The quadratic B-spline of a wrapped coefficient sequence is
+/// periodic and C¹, so a seamless tile's edges continue each other like interior pixels.
+#[inline]
+pub fn noise2_periodic(tile: &[f32], n: usize, p: [f32; 2], period: [f32; 2]) -> f32 {
+    let pw = [period[0].min(n as f32), period[1].min(n as f32)];
+    let (px, py) = (pw[0] as i32, pw[1] as i32);
+    let (mx, wx) = bspline_weights(wrap_coord(p[0], pw[0]));
+    let (my, wy) = bspline_weights(wrap_coord(p[1], pw[1]));
+    let mut sum = 0.0f32;
+    for dy in 0..3 {
+        let row = wrap_period(my + dy as i32 - 1, py) * n;
+        let mut line = 0.0f32;
+        for dx in 0..3 {
+            line += wx[dx] * tile[row + wrap_period(mx + dx as i32 - 1, px)];
+        }
+        sum += wy[dy] * line;
+    }
+    sum
+}
+
 /// One 3D wavelet-noise band at `p` (coefficient units), periodic with period `n`.
 #[inline]
 pub fn noise3(tile: &[f32], n: usize, p: [f32; 3]) -> f32 {

@@ -38,7 +38,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::noise::{Tile, band_fade, noise2, noise3};
+use crate::noise::{Tile, band_fade, noise2, noise2_periodic, noise3, whole_period};
 use crate::render::Prepared;
 use crate::rng;
 
@@ -476,9 +476,40 @@ pub fn cell_hash(prep: &Prepared, ix: i32, iy: i32, k: u32) -> f32 {
     rng::uniform(prep.pattern[2], rng::stream::CELLS, index) as f32
 }
 
-/// Noise octave `k` (frequency `2^k` per pattern unit) at pattern point `q`.
+/// Cell index `i` wrapped at `n` cells (a seamless tile's lattice, see [`pattern_at`]); `i`
+/// itself for `n = 0` (the infinite texture).
 #[inline]
-pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize) -> f32 {
+pub fn wrap_cell(i: i32, n: i32) -> i32 {
+    if n > 0 { i.rem_euclid(n) } else { i }
+}
+
+/// The whole number of cells of width `pitch` (and rows of height 1) that the periods `wrap`
+/// of [`pattern_at`] hold; `[0, 0]` (no wrap) for `wrap[0] = 0`.
+#[inline]
+pub fn wrap_cells(pitch: f32, wrap: [f32; 2]) -> [i32; 2] {
+    if wrap[0] > 0.0 {
+        [
+            (wrap[0] / pitch + 0.5).floor() as i32,
+            (wrap[1] + 0.5).floor() as i32,
+        ]
+    } else {
+        [0, 0]
+    }
+}
+
+/// [`cell_hash`] of cell `(ix, iy)` of a lattice that wraps at `cells` (0: does not).
+#[inline]
+pub fn cell_hash_wrapped(prep: &Prepared, ix: i32, iy: i32, k: u32, cells: [i32; 2]) -> f32 {
+    cell_hash(prep, wrap_cell(ix, cells[0]), wrap_cell(iy, cells[1]), k)
+}
+
+/// Noise octave `k` (frequency `2^k` per pattern unit) at pattern point `q`. With `per[0] > 0`
+/// (a seamless tile; plane textures only) `q` repeats with period `per` per axis, and the
+/// octave is made to repeat with it: its frequency is moved to the nearest whole number of
+/// noise coefficients over the period ([`whole_period`]), as the seamless tile does with the
+/// noise model's bands.
+#[inline]
+pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize, per: [f32; 2]) -> f32 {
     let f = (1u32 << k) as f32;
     let o = prep.pattern_offsets[k];
     if prep.solid {
@@ -486,6 +517,15 @@ pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize) -> f32 {
             &tile.data,
             tile.n,
             [q[0] * f + o[0], q[1] * f + o[1], q[2] * f + o[2]],
+        )
+    } else if per[0] > 0.0 {
+        let n = tile.n as f32;
+        let m = [whole_period(per[0] * f, n), whole_period(per[1] * f, n)];
+        noise2_periodic(
+            &tile.data,
+            tile.n,
+            [q[0] / per[0] * m[0] + o[0], q[1] / per[1] * m[1] + o[1]],
+            m,
         )
     } else {
         noise2(&tile.data, tile.n, [q[0] * f + o[0], q[1] * f + o[1]])
@@ -496,7 +536,8 @@ pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize) -> f32 {
 /// (`mode` 0: fractal noise, unit variance when nothing is faded), `|n|` (1: turbulence,
 /// Perlin 1985) or `exp(−sharpness·|n|)` (2: ridged, crests where the noise crosses 0); modes 1
 /// and 2 normalised by the amplitudes' sum. `lfp`: log2 of the pixel footprint in pattern units
-/// (octaves fade out as [`band_fade`] fades bands).
+/// (octaves fade out as [`band_fade`] fades bands). `per`: `q`'s period (see [`octave`]).
+#[allow(clippy::too_many_arguments)] // the twin of the WGSL function's argument list
 #[inline]
 pub fn octaves(
     prep: &Prepared,
@@ -506,6 +547,7 @@ pub fn octaves(
     mode: u32,
     sharpness: f32,
     lfp: f32,
+    per: [f32; 2],
 ) -> f32 {
     let mut sum = 0.0f32;
     let mut norm = 0.0f32;
@@ -513,7 +555,7 @@ pub fn octaves(
     for k in 0..OCTAVES {
         let fade = band_fade(0, lfp + k as f32);
         if fade > 0.0 {
-            let n = octave(prep, tile, q, k);
+            let n = octave(prep, tile, q, k, per);
             let v = match mode {
                 0 => n,
                 1 => n.abs(),
@@ -546,42 +588,85 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
         (-s * u[0] + c * u[1]) * is,
         u[2] * is,
     ];
-    let lfp = log2_fp + log2_is;
+    pattern_at(prep, tile, q, log2_fp + log2_is, [0.0, 0.0])
+}
+
+/// The periods in pattern units, along the pattern's own axes, of a seamless tile whose side
+/// spans `span` pattern units (see [`pattern_at`]): `span` moved to the nearest whole number
+/// (at least 1) of the family's lattice pitch along each axis (rows of height 1; cells, bricks,
+/// planks of width aspect, stretch or length; wood lines one per unit), `span` itself along an
+/// axis with no lattice (the noise octaves round their own periods).
+pub fn tile_periods(prep: &Prepared, span: f32) -> [f32; 2] {
+    let w = prep.pattern_values;
+    let whole = |pitch: f32| pitch * (span / pitch + 0.5).floor().max(1.0);
+    match prep.pattern[0] {
+        4 | 5 | 7 => [whole(w[0]), whole(1.0)],
+        6 => [whole(w[4]), whole(1.0)],
+        8 => [span, whole(1.0)],
+        _ => [span, span],
+    }
+}
+
+/// The structure value at pattern point `q` (`lfp`: log2 of the pixel footprint in pattern
+/// units). `wrap` (0: none) makes it periodic, for a seamless tile (plane textures only): `q`
+/// then repeats with period `wrap` along the pattern's axes ([`tile_periods`]), the lattice
+/// families' cell indices wrap at the whole number of cells the period holds (cell hashes, row
+/// shifts and jitter repeat with it; brick's row offset is moved to the nearest multiple of
+/// 1 / rows so that the bond closes), the noise octaves repeat ([`octave`]), and rings take
+/// the torus distance to their centre (nearest copy).
+pub fn pattern_at(prep: &Prepared, tile: &Tile, q: [f32; 3], lfp: f32, wrap: [f32; 2]) -> f32 {
+    let [_, c, s, _] = prep.pattern_transform;
     let w = prep.pattern_values;
     let soft = lfp.exp2();
+    // The noise families' octaves along the pattern stretched by its first value.
+    let stretched = |mode: u32, sharpness: f32| {
+        let per = [wrap[0] / w[0], wrap[1]];
+        let q = [q[0] / w[0], q[1], q[2]];
+        octaves(prep, tile, q, w[1], mode, sharpness, lfp, per)
+    };
     match prep.pattern[0] {
         // perlin: stretch, roughness, contrast, threshold
         1 => {
-            let n = octaves(prep, tile, [q[0] / w[0], q[1], q[2]], w[1], 0, 0.0, lfp);
+            let n = stretched(0, 0.0);
             1.0 / (1.0 + (-w[2] * (n - w[3])).exp())
         }
         // turbulence: stretch, roughness, contrast
         2 => {
-            let t = octaves(prep, tile, [q[0] / w[0], q[1], q[2]], w[1], 1, 0.0, lfp);
+            let t = stretched(1, 0.0);
             1.0 - (-w[2] * t).exp()
         }
         // ridged: stretch, roughness, sharpness
-        3 => octaves(prep, tile, [q[0] / w[0], q[1], q[2]], w[1], 2, w[2], lfp),
+        3 => stretched(2, w[2]),
         // grid: aspect, mortar, bevel, variation
         4 => {
+            let n = wrap_cells(w[0], wrap);
             let x = q[0] / w[0];
             let (ix, iy) = (x.floor(), q[1].floor());
             let d = joint_distance(x - ix, q[1] - iy, w[0]);
-            let shade = 1.0 - w[3] * cell_hash(prep, ix as i32, iy as i32, 0);
+            let shade = 1.0 - w[3] * cell_hash_wrapped(prep, ix as i32, iy as i32, 0, n);
             soft_step(0.5 * w[1], w[2].max(soft), d) * shade
         }
         // brick: aspect, mortar, row_offset, jitter, bevel, variation
         5 => {
+            let n = wrap_cells(w[0], wrap);
             let iy = q[1].floor();
-            let shift = iy * w[2] + w[3] * (cell_hash(prep, 0, iy as i32, 1) - 0.5);
+            let (row, offset) = if n[1] > 0 {
+                let row = wrap_cell(iy as i32, n[1]);
+                let rows = n[1] as f32;
+                (row as f32, (w[2] * rows + 0.5).floor() / rows)
+            } else {
+                (iy, w[2])
+            };
+            let shift = row * offset + w[3] * (cell_hash(prep, 0, row as i32, 1) - 0.5);
             let x = q[0] / w[0] + shift;
             let ix = x.floor();
             let d = joint_distance(x - ix, q[1] - iy, w[0]);
-            let shade = 1.0 - w[5] * cell_hash(prep, ix as i32, iy as i32, 0);
+            let shade = 1.0 - w[5] * cell_hash_wrapped(prep, ix as i32, iy as i32, 0, n);
             soft_step(0.5 * w[1], w[4].max(soft), d) * shade
         }
         // cells: jitter, mortar, bevel, variation, stretch
         6 => {
+            let n = wrap_cells(w[4], wrap);
             let p = [q[0] / w[4], q[1]];
             let (ix, iy) = (p[0].floor(), p[1].floor());
             let f = [p[0] - ix, p[1] - iy];
@@ -591,8 +676,8 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
                 for dx in -1..=1 {
                     let cx = ix as i32 + dx;
                     let cy = iy as i32 + dy;
-                    let px = dx as f32 + 0.5 + w[0] * (cell_hash(prep, cx, cy, 0) - 0.5);
-                    let py = dy as f32 + 0.5 + w[0] * (cell_hash(prep, cx, cy, 1) - 0.5);
+                    let px = dx as f32 + 0.5 + w[0] * (cell_hash_wrapped(prep, cx, cy, 0, n) - 0.5);
+                    let py = dy as f32 + 0.5 + w[0] * (cell_hash_wrapped(prep, cx, cy, 1, n) - 0.5);
                     let (ex, ey) = (px - f[0], py - f[1]);
                     let d = ex * ex + ey * ey;
                     if d < f1 {
@@ -605,16 +690,18 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
                 }
             }
             let edge = 0.5 * (f2.sqrt() - f1.sqrt());
-            let shade = 1.0 - w[3] * cell_hash(prep, id[0], id[1], 2);
+            let shade = 1.0 - w[3] * cell_hash_wrapped(prep, id[0], id[1], 2, n);
             soft_step(0.5 * w[1], w[2].max(soft), edge) * shade
         }
         // planks: length, gap, bevel, variation, grain
         7 => {
+            let n = wrap_cells(w[0], wrap);
             let iy = q[1].floor();
-            let x = q[0] / w[0] + cell_hash(prep, 0, iy as i32, 1);
+            let x = q[0] / w[0] + cell_hash_wrapped(prep, 0, iy as i32, 1, [0, n[1]]);
             let ix = x.floor();
             let d = joint_distance(x - ix, q[1] - iy, w[0]);
-            let n = octaves(
+            let per = [wrap[0] * 0.125, wrap[1] * 4.0];
+            let g = octaves(
                 prep,
                 tile,
                 [q[0] * 0.125, q[1] * 4.0, q[2]],
@@ -622,13 +709,15 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
                 0,
                 0.0,
                 lfp + 2.0,
+                per,
             );
-            let shade = (1.0 - w[3] * cell_hash(prep, ix as i32, iy as i32, 0))
-                * (1.0 - w[4] * (0.5 + 0.5 * n.tanh()));
+            let shade = (1.0 - w[3] * cell_hash_wrapped(prep, ix as i32, iy as i32, 0, n))
+                * (1.0 - w[4] * (0.5 + 0.5 * g.tanh()));
             soft_step(0.5 * w[1], w[2].max(soft), d) * shade
         }
         // wood lines: stretch, distortion, sharpness, roughness
         8 => {
+            let per = [0.25 * wrap[0] / w[0], 0.25 * wrap[1]];
             let n = octaves(
                 prep,
                 tile,
@@ -637,6 +726,7 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
                 0,
                 0.0,
                 lfp - 2.0,
+                per,
             );
             let v = q[1] + w[1] * n;
             (0.5 + 0.5 * (std::f32::consts::TAU * v).sin())
@@ -647,7 +737,12 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
         // texel `scale · (centre_x, centre_y)`, so the rings turn about it)
         9 => {
             let qc = [c * w[4] + s * w[5], -s * w[4] + c * w[5]];
-            let p = [(q[0] - qc[0]) / w[3], q[1] - qc[1], q[2]];
+            let mut p = [(q[0] - qc[0]) / w[3], q[1] - qc[1], q[2]];
+            let per = [wrap[0] / w[3], wrap[1]];
+            if wrap[0] > 0.0 {
+                p[0] -= per[0] * (p[0] / per[0] + 0.5).floor();
+                p[1] -= per[1] * (p[1] / per[1] + 0.5).floor();
+            }
             let n = octaves(
                 prep,
                 tile,
@@ -656,6 +751,7 @@ pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
                 0,
                 0.0,
                 lfp - 2.0,
+                [0.25 * per[0], 0.25 * per[1]],
             );
             let r = (p[0] * p[0] + p[1] * p[1]).sqrt() + w[0] * n;
             (0.5 + 0.5 * (std::f32::consts::TAU * r).sin())

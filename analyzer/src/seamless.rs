@@ -19,10 +19,23 @@
 //! - Rotation is ignored (the noise is isotropic: rotating it only picks another realisation,
 //!   and a rotated lattice cannot repeat along the image axes).
 //! - A solid (3D) texture's tile is its plane texture (the 2D noise of the same seed and params).
+//!
+//! Structured models (ours; neither paper makes tiles of them): the pattern's total rotation
+//! (the texture's plus the pattern's) is moved to the nearest multiple of 90°, so that its
+//! axes run along the tile's; over the tile the pattern then spans `span` pattern units along
+//! each of its axes, which [`crate::pattern::tile_periods`] moves to a whole number of the
+//! family's cells (rows, bricks, planks, stones, wood lines), and
+//! [`crate::pattern::pattern_at`] wraps cell indices, row shifts and noise octaves at those
+//! periods (rings: the torus distance to their centre). Departures, deliberate: a turned
+//! pattern (a brick wall at 30°) is tiled upright (a turned lattice cannot repeat along the
+//! tile's axes with a period this small); the cells' size moves by up to half a cell over the
+//! tile (a visible stretch only for a tile a few cells wide); brick's row offset moves to the
+//! nearest multiple of 1 / rows.
 
 use crate::error::{Error, Result};
-use crate::noise::{Tile, band_fade, bspline_weights, wrap_coord};
+use crate::noise::{Tile, band_fade, noise2_periodic};
 use crate::params::{MAX_BANDS, Params};
+use crate::pattern::{pattern_at, ramp};
 use crate::render::{Image, Prepared, colour};
 
 /// The largest tile side (the WebGPU limit on a texture side, and 256 MiB as 8-bit RGBA).
@@ -37,6 +50,10 @@ pub struct Seamless {
     pub log2_fp: f32,
     /// Band `j` spans `periods[j]` coefficients over the tile (a whole number).
     pub periods: [f32; MAX_BANDS],
+    /// Structured models: the pattern's periods over the tile along its axes (pattern units,
+    /// [`crate::pattern::tile_periods`]) and the cos and sin of its rotation moved to a
+    /// multiple of 90° (exactly 0 or ±1); zero for the noise model.
+    pub pattern: [f32; 4],
 }
 
 impl Seamless {
@@ -47,13 +64,6 @@ impl Seamless {
             return Err(Error::Option(format!(
                 "tile size {size}: choose 16 to {MAX_TILE} pixels"
             )));
-        }
-        if prep.pattern[0] != 0 {
-            return Err(Error::Option(
-                "seamless tiles of structured models are not available yet: their patterns \
-                 do not repeat over a tile (export the shader, or a noise-model preset)"
-                    .into(),
-            ));
         }
         if !(pixel_size.is_finite() && pixel_size > 0.0) {
             return Err(Error::Option(format!(
@@ -71,56 +81,43 @@ impl Seamless {
                 n * (m / n).round()
             } as f32;
         }
+        let mut pattern = [0.0f32; 4];
+        if prep.pattern[0] != 0 {
+            let [is, pc, ps, _] = prep.pattern_transform;
+            let turn = f64::from(prep.rot[1]).atan2(f64::from(prep.rot[0]))
+                + f64::from(ps).atan2(f64::from(pc));
+            let quarter = (turn / std::f64::consts::FRAC_PI_2).round().rem_euclid(4.0) as usize;
+            let [c, s] = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]][quarter];
+            let [px, py] = crate::pattern::tile_periods(prep, (span * is as f64) as f32);
+            pattern = [px, py, c, s];
+        }
         Ok(Seamless {
             size,
             log2_fp: (pixel_size * prep.inv_scale).log2(),
             periods,
+            pattern,
         })
     }
 
     /// The uniform block of `shaders/seamless.wgsl` (`struct Seamless`): the 12 band periods as
-    /// three vec4, then (size, log2 footprint, first row, unused).
+    /// three vec4, then (size, log2 footprint, first row, unused), then the pattern's periods
+    /// and turn.
     pub fn uniform_bytes(&self, first_row: u32) -> Vec<u8> {
         let mut v: Vec<f32> = self.periods.to_vec();
         v.extend([self.size as f32, self.log2_fp, first_row as f32, 0.0]);
+        v.extend(self.pattern);
         v.iter().flat_map(|x| x.to_le_bytes()).collect()
     }
 }
 
 /// Size of [`Seamless::uniform_bytes`].
-pub const UNIFORM_SIZE: usize = 4 * (MAX_BANDS + 4);
+pub const UNIFORM_SIZE: usize = 4 * (MAX_BANDS + 8);
 
 /// The params a tile renders: a solid texture's plane texture (see the module docs).
 pub fn plane(params: &Params) -> Params {
     let mut p = params.clone();
     p.solid = false;
     p
-}
-
-/// `i mod m` for any `m ≥ 1` (the wrapped period need not be a power of two).
-#[inline]
-fn wrap_period(i: i32, m: i32) -> usize {
-    i.rem_euclid(m) as usize
-}
-
-/// One band at `p` (coefficient units) with coefficient indices wrapped at
-/// `min(period, n)`: periodic with `period` when `period` is a whole number.
-#[inline]
-pub fn noise2_wrapped(tile: &[f32], n: usize, p: [f32; 2], period: f32) -> f32 {
-    let pw = period.min(n as f32);
-    let pi = pw as i32;
-    let (mx, wx) = bspline_weights(wrap_coord(p[0], pw));
-    let (my, wy) = bspline_weights(wrap_coord(p[1], pw));
-    let mut sum = 0.0f32;
-    for dy in 0..3 {
-        let row = wrap_period(my + dy as i32 - 1, pi) * n;
-        let mut line = 0.0f32;
-        for dx in 0..3 {
-            line += wx[dx] * tile[row + wrap_period(mx + dx as i32 - 1, pi)];
-        }
-        sum += wy[dy] * line;
-    }
-    sum
 }
 
 /// The multiresolution noise of channel `c` at tile position `a` (0..1 per axis).
@@ -140,7 +137,12 @@ pub fn channel_noise_wrapped(
         }
         let m = s.periods[j];
         let o = prep.offsets[c][j];
-        sum += w * noise2_wrapped(&tile.data, tile.n, [a[0] * m + o[0], a[1] * m + o[1]], m);
+        sum += w * noise2_periodic(
+            &tile.data,
+            tile.n,
+            [a[0] * m + o[0], a[1] * m + o[1]],
+            [m, m],
+        );
     }
     sum
 }
@@ -161,10 +163,34 @@ pub fn seamless_pixel(
         (x as f32 + 0.5) / size,
         ((y - first_row) as f32 + 0.5 + first_row as f32) / size,
     ];
+    let base = if prep.pattern[0] != 0 {
+        ramp(prep, pattern_wrapped(prep, tile, s, a))
+    } else {
+        prep.mean
+    };
     colour(
         prep,
         [0, 1, 2].map(|c| channel_noise_wrapped(prep, tile, s, c, a)),
-        prep.mean,
+        base,
+    )
+}
+
+/// The structure value of a structured model at tile position `a` (0..1 per axis): the
+/// pattern turned by a multiple of 90° and spanning its periods over the tile (module docs).
+#[inline]
+pub fn pattern_wrapped(prep: &Prepared, tile: &Tile, s: &Seamless, a: [f32; 2]) -> f32 {
+    let [px, py, c, sn] = s.pattern;
+    let q = [
+        px * (c * a[0] + sn * a[1]),
+        py * (-sn * a[0] + c * a[1]),
+        0.0,
+    ];
+    pattern_at(
+        prep,
+        tile,
+        q,
+        s.log2_fp + prep.pattern_transform[3],
+        [px, py],
     )
 }
 
@@ -312,13 +338,68 @@ mod tests {
         assert!(Seamless::new(&prep, 128, 64, 0.0).is_err());
     }
 
+    /// Every pattern family, at rotations that snap to each quarter turn and at scales from a
+    /// few cells to less than one over the tile, repeats with the tile: the structure value at
+    /// `a` equals the one at `a` plus a whole tile along either axis (up to the float error of
+    /// `q` at the far copy: a point on a joint may flip cells, so a few mismatches are allowed).
+    #[test]
+    fn structured_patterns_repeat_with_the_tile() {
+        use crate::pattern::{Pattern, PatternKind};
+        let tile = Tile::new_2d(4);
+        for kind in PatternKind::ALL {
+            for (i, (scale, rot)) in [
+                (9.0f32, 0.0f32),
+                (23.5, 100.0),
+                (61.0, 185.0),
+                (300.0, -80.0),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let mut pat = Pattern::new(kind, scale);
+                pat.rotation_deg = rot;
+                let params = crate::structure::shell(pat, 7 + i as u32, false);
+                let prep = Prepared::new(&params);
+                let s = Seamless::new(&prep, tile.n, 256, 1.0).unwrap();
+                assert!(
+                    s.pattern[2].abs() + s.pattern[3].abs() == 1.0,
+                    "{kind:?}: turn {:?} is not a quarter turn",
+                    &s.pattern[2..]
+                );
+                let (mut bad, mut total) = (0, 0);
+                for k in 0..200u32 {
+                    let a = [
+                        crate::rng::uniform(11, 0, k) as f32,
+                        crate::rng::uniform(11, 1, k) as f32,
+                    ];
+                    let v = pattern_wrapped(&prep, &tile, &s, a);
+                    for b in [[a[0] + 1.0, a[1]], [a[0], a[1] - 1.0]] {
+                        total += 1;
+                        if (pattern_wrapped(&prep, &tile, &s, b) - v).abs() > 1e-3 {
+                            bad += 1;
+                        }
+                    }
+                }
+                assert!(
+                    bad * 100 <= total,
+                    "{kind:?} at scale {scale}, {rot}°: {bad} of {total} points differ a tile away"
+                );
+            }
+        }
+    }
+
     #[test]
     fn wrapped_noise_repeats_with_its_period() {
         let tile = Tile::new_2d(9);
         for period in [1.0f32, 3.0, 16.0, 128.0, 256.0] {
             for &(x, y) in &[(0.3f32, 7.9f32), (5.5, 0.0), (100.25, 33.5)] {
-                let a = noise2_wrapped(&tile.data, tile.n, [x, y], period);
-                let b = noise2_wrapped(&tile.data, tile.n, [x + period, y - period], period);
+                let a = noise2_periodic(&tile.data, tile.n, [x, y], [period, period]);
+                let b = noise2_periodic(
+                    &tile.data,
+                    tile.n,
+                    [x + period, y - period],
+                    [period, period],
+                );
                 assert!(
                     (a - b).abs() < 1e-4,
                     "period {period} at ({x}, {y}): {a} vs {b}"

@@ -286,6 +286,18 @@ fn export_prints_json_wgsl_and_glsl() {
         "{}",
         stdout(&o)
     );
+    // The structured preset renders as a seamless tile too.
+    let o = proctex(&[
+        "render",
+        &planks,
+        "--seamless",
+        "--size",
+        "96",
+        "-o",
+        &tmp("planks-tile.png"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("seamless tile"), "{}", stdout(&o));
     for (format, want) in [
         ("wgsl", "var<uniform> proctex_t"),
         ("glsl", "uniform float proctex_t;"),

@@ -169,8 +169,9 @@ function seamRatios(img) {
   return [ratio(w, col), ratio(h, row)];
 }
 
-for (const [bits, forceCpu] of [[16, false], [8, true]]) {
-  test(`PNG tile export: ${bits}-bit on the ${forceCpu ? 'CPU (fallback)' : 'GPU'} equals the CLI tile and wraps seamlessly`, async ({ page }) => {
+for (const [bits, forceCpu, structured] of [[16, false, false], [8, true, false], [8, false, true]]) {
+  const what = structured ? "a structured model's" : 'the noise model\'s';
+  test(`PNG tile export of ${what} texture: ${bits}-bit on the ${forceCpu ? 'CPU (fallback)' : 'GPU'} equals the CLI tile and wraps seamlessly`, async ({ page }) => {
     const { PNG } = require('pngjs');
     const fs = require('fs');
     const { execFileSync } = require('child_process');
@@ -178,6 +179,15 @@ for (const [bits, forceCpu] of [[16, false], [8, true]]) {
     const os = require('os');
     const { ROOT } = require('./helpers');
     await openApp(page);
+    if (structured) {
+      // The brick sample fitted with the brick family by the CLI, loaded as a preset would be.
+      const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'proctex-brick-'));
+      execFileSync(path.join(ROOT, 'target', 'release', 'proctex'), ['analyze',
+        path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png'), '--model', 'brick', '-o', path.join(dir, 'p.json')]);
+      await page.evaluate((j) => window.proctex.setParams(j), fs.readFileSync(path.join(dir, 'p.json'), 'utf8'));
+      await waitFrames(page, 3);
+      expect(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model.kind).toBe('structured');
+    }
     const size = 256;
     await page.evaluate(([s, b, c]) => window.proctex.setTileOptions(s, b, c), [size, bits, forceCpu]);
     await waitFrames(page, 2);
@@ -196,7 +206,7 @@ for (const [bits, forceCpu] of [[16, false], [8, true]]) {
     const unit = bits === 16 ? 257 : 1; // one 8-bit step
     const mae = meanDiff(app, cpu) / unit;
     const [cols, rows] = seamRatios(app);
-    console.log(`PNG tile ${size}² ${bits}-bit (${forceCpu ? 'CPU' : 'GPU'}): vs CLI mean |diff| ${mae.toFixed(4)}/255; seam ratio columns ${cols.toFixed(3)}, rows ${rows.toFixed(3)}`);
+    console.log(`PNG tile of ${what} texture ${size}² ${bits}-bit (${forceCpu ? 'CPU' : 'GPU'}): vs CLI mean |diff| ${mae.toFixed(4)}/255; seam ratio columns ${cols.toFixed(3)}, rows ${rows.toFixed(3)}`);
     expect(mae).toBeLessThan(0.05);
     expect(cols).toBeLessThan(1.6);
     expect(rows).toBeLessThan(1.6);

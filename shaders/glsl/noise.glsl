@@ -24,6 +24,22 @@ int wrap_index(int i, int n) {
     return i & (n - 1);
 }
 
+// i mod m for any m >= 1, in float arithmetic (GLSL's % is undefined for negative operands;
+// exact for |i| < 2^24, which seamless tiles' indices are).
+int wrap_period(int i, int m) {
+    float fi = float(i);
+    float fm = float(m);
+    return int(fi - fm * floor(fi / fm));
+}
+
+// The whole number of coefficients nearest m that a band of a tile of side n can repeat with.
+float whole_period(float m, float n) {
+    if (m < n) {
+        return max(floor(m + 0.5), 1.0);
+    }
+    return n * floor(m / n + 0.5);
+}
+
 #ifdef PROCTEX_SOLID
 // The 3D tile through tile3_side / tile3_texel (tile3_atlas.glsl).
 float wavelet_noise3(vec3 p) {
@@ -67,6 +83,30 @@ float wavelet_noise2(vec2 p) {
     float sum = 0.0;
     for (int dy = 0; dy < 3; dy++) {
         int row = wrap_index(by.mid + dy - 1, ni);
+        float line = 0.0;
+        for (int dx = 0; dx < 3; dx++) {
+            line += bx.w[dx] * texelFetch(proctex_tile2, ivec2(cols[dx], row), 0).r;
+        }
+        sum += by.w[dy] * line;
+    }
+    return sum;
+}
+
+// One 2D band with its coefficient indices wrapped at min(period, n) per axis (seamless tiles).
+float noise2_periodic(vec2 p, vec2 period) {
+    float nf = float(textureSize(proctex_tile2, 0).x);
+    vec2 pw = vec2(min(period.x, nf), min(period.y, nf));
+    int px = int(pw.x);
+    int py = int(pw.y);
+    BWeights bx = bspline_weights(wrap_coord(p.x, pw.x));
+    BWeights by = bspline_weights(wrap_coord(p.y, pw.y));
+    ivec3 cols = ivec3(
+        wrap_period(bx.mid - 1, px),
+        wrap_period(bx.mid, px),
+        wrap_period(bx.mid + 1, px));
+    float sum = 0.0;
+    for (int dy = 0; dy < 3; dy++) {
+        int row = wrap_period(by.mid + dy - 1, py);
         float line = 0.0;
         for (int dx = 0; dx < 3; dx++) {
             line += bx.w[dx] * texelFetch(proctex_tile2, ivec2(cols[dx], row), 0).r;

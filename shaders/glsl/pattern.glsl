@@ -15,26 +15,56 @@ float cell_hash(int ix, int iy, uint k) {
     return uniform01(params.pattern.z, CELLS_STREAM, index);
 }
 
-float octave(vec3 q, uint k) {
+// Cell index i wrapped at n cells (a seamless tile's lattice); i itself for n = 0.
+int wrap_cell(int i, int n) {
+    if (n > 0) {
+        float fi = float(i);
+        float fc = float(n);
+        return int(fi - fc * floor(fi / fc));
+    }
+    return i;
+}
+
+// The whole number of cells of width pitch (and rows of height 1) that the periods wrap hold;
+// (0, 0) (no wrap) for wrap.x = 0.
+ivec2 wrap_cells(float pitch, vec2 wrap) {
+    if (wrap.x > 0.0) {
+        return ivec2(int(floor(wrap.x / pitch + 0.5)), int(floor(wrap.y + 0.5)));
+    }
+    return ivec2(0, 0);
+}
+
+float cell_hash_wrapped(int ix, int iy, uint k, ivec2 cells) {
+    return cell_hash(wrap_cell(ix, cells.x), wrap_cell(iy, cells.y), k);
+}
+
+// Octave k at q; with per.x > 0 (seamless tiles, plane textures) q repeats with period per and
+// the octave's frequency moves to a whole number of coefficients over it.
+float octave(vec3 q, uint k, vec2 per) {
     float f = float(1u << k);
     vec3 o = params.pattern_offsets[k].xyz;
 #ifdef PROCTEX_SOLID
     return wavelet_noise3(vec3(q.x * f + o.x, q.y * f + o.y, q.z * f + o.z));
 #else
+    if (per.x > 0.0) {
+        float n = float(textureSize(proctex_tile2, 0).x);
+        vec2 m = vec2(whole_period(per.x * f, n), whole_period(per.y * f, n));
+        return noise2_periodic(vec2(q.x / per.x * m.x + o.x, q.y / per.y * m.y + o.y), m);
+    }
     return wavelet_noise2(vec2(q.x * f + o.x, q.y * f + o.y));
 #endif
 }
 
 // The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or exp(-sharpness*|n|) (2,
 // ridged).
-float octaves(vec3 q, float gain, uint mode, float sharpness, float lfp) {
+float octaves(vec3 q, float gain, uint mode, float sharpness, float lfp, vec2 per) {
     float sum = 0.0;
     float norm = 0.0;
     float amp = 1.0;
     for (uint k = 0u; k < PATTERN_OCTAVES; k++) {
         float fade = band_fade(0u, lfp + float(k));
         if (fade > 0.0) {
-            float n = octave(q, k);
+            float n = octave(q, k, per);
             float v = n;
             if (mode == 1u) {
                 v = abs(n);
@@ -60,52 +90,74 @@ float joint_distance(float fx, float fy, float aspect) {
     return min(min(fx, 1.0 - fx) * aspect, min(fy, 1.0 - fy));
 }
 
+float pattern_at(vec3 q, float lfp, vec2 wrap);
+
 float pattern(vec3 u, float log2_fp) {
     vec4 xf = params.pattern_transform;
     float is = xf.x;
     float c = xf.y;
     float s = xf.z;
     vec3 q = vec3((c * u.x + s * u.y) * is, (-s * u.x + c * u.y) * is, u.z * is);
-    float lfp = log2_fp + xf.w;
+    return pattern_at(q, log2_fp + xf.w, vec2(0.0, 0.0));
+}
+
+// The structure value at pattern point q; wrap (0: none) makes it repeat with period wrap
+// along the pattern's axes (seamless tiles).
+float pattern_at(vec3 q, float lfp, vec2 wrap) {
+    float c = params.pattern_transform.y;
+    float s = params.pattern_transform.z;
     vec4 w0 = params.pattern_values[0];
     vec4 w1 = params.pattern_values[1];
     float soft = exp2(lfp);
     switch (params.pattern.x) {
     case 1u: {
         // perlin: stretch, roughness, contrast, threshold
-        float n = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 0u, 0.0, lfp);
+        vec2 per = vec2(wrap.x / w0.x, wrap.y);
+        float n = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 0u, 0.0, lfp, per);
         return 1.0 / (1.0 + exp(-w0.z * (n - w0.w)));
     }
     case 2u: {
         // turbulence: stretch, roughness, contrast
-        float t = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 1u, 0.0, lfp);
+        vec2 per = vec2(wrap.x / w0.x, wrap.y);
+        float t = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 1u, 0.0, lfp, per);
         return 1.0 - exp(-w0.z * t);
     }
     case 3u: {
         // ridged: stretch, roughness, sharpness
-        return octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 2u, w0.z, lfp);
+        vec2 per = vec2(wrap.x / w0.x, wrap.y);
+        return octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 2u, w0.z, lfp, per);
     }
     case 4u: {
         // grid: aspect, mortar, bevel, variation
+        ivec2 n = wrap_cells(w0.x, wrap);
         float x = q.x / w0.x;
         float ix = floor(x);
         float iy = floor(q.y);
         float d = joint_distance(x - ix, q.y - iy, w0.x);
-        float shade = 1.0 - w0.w * cell_hash(int(ix), int(iy), 0u);
+        float shade = 1.0 - w0.w * cell_hash_wrapped(int(ix), int(iy), 0u, n);
         return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;
     }
     case 5u: {
         // brick: aspect, mortar, row_offset, jitter, bevel, variation
+        ivec2 n = wrap_cells(w0.x, wrap);
         float iy = floor(q.y);
-        float shift = iy * w0.z + w0.w * (cell_hash(0, int(iy), 1u) - 0.5);
+        float row = iy;
+        float offset = w0.z;
+        if (n.y > 0) {
+            float rows = float(n.y);
+            row = float(wrap_cell(int(iy), n.y));
+            offset = floor(w0.z * rows + 0.5) / rows;
+        }
+        float shift = row * offset + w0.w * (cell_hash(0, int(row), 1u) - 0.5);
         float x = q.x / w0.x + shift;
         float ix = floor(x);
         float d = joint_distance(x - ix, q.y - iy, w0.x);
-        float shade = 1.0 - w1.y * cell_hash(int(ix), int(iy), 0u);
+        float shade = 1.0 - w1.y * cell_hash_wrapped(int(ix), int(iy), 0u, n);
         return soft_step(0.5 * w0.y, max(w1.x, soft), d) * shade;
     }
     case 6u: {
         // cells: jitter, mortar, bevel, variation, stretch
+        ivec2 n = wrap_cells(w1.x, wrap);
         vec2 p = vec2(q.x / w1.x, q.y);
         float ix = floor(p.x);
         float iy = floor(p.y);
@@ -117,8 +169,8 @@ float pattern(vec3 u, float log2_fp) {
             for (int dx = -1; dx <= 1; dx++) {
                 int cx = int(ix) + dx;
                 int cy = int(iy) + dy;
-                float px = float(dx) + 0.5 + w0.x * (cell_hash(cx, cy, 0u) - 0.5);
-                float py = float(dy) + 0.5 + w0.x * (cell_hash(cx, cy, 1u) - 0.5);
+                float px = float(dx) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 0u, n) - 0.5);
+                float py = float(dy) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 1u, n) - 0.5);
                 float ex = px - f.x;
                 float ey = py - f.y;
                 float d = ex * ex + ey * ey;
@@ -132,31 +184,42 @@ float pattern(vec3 u, float log2_fp) {
             }
         }
         float edge = 0.5 * (sqrt(f2) - sqrt(f1));
-        float shade = 1.0 - w0.w * cell_hash(id.x, id.y, 2u);
+        float shade = 1.0 - w0.w * cell_hash_wrapped(id.x, id.y, 2u, n);
         return soft_step(0.5 * w0.y, max(w0.z, soft), edge) * shade;
     }
     case 7u: {
         // planks: length, gap, bevel, variation, grain
+        ivec2 n = wrap_cells(w0.x, wrap);
         float iy = floor(q.y);
-        float x = q.x / w0.x + cell_hash(0, int(iy), 1u);
+        float x = q.x / w0.x + cell_hash_wrapped(0, int(iy), 1u, ivec2(0, n.y));
         float ix = floor(x);
         float d = joint_distance(x - ix, q.y - iy, w0.x);
-        float n = octaves(vec3(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0);
-        float shade = (1.0 - w0.w * cell_hash(int(ix), int(iy), 0u))
-            * (1.0 - w1.x * (0.5 + 0.5 * tanh(n)));
+        vec2 per = vec2(wrap.x * 0.125, wrap.y * 4.0);
+        float g = octaves(vec3(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0, per);
+        float shade = (1.0 - w0.w * cell_hash_wrapped(int(ix), int(iy), 0u, n))
+            * (1.0 - w1.x * (0.5 + 0.5 * tanh(g)));
         return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;
     }
     case 8u: {
         // wood lines: stretch, distortion, sharpness, roughness
-        float n = octaves(vec3(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0, lfp - 2.0);
+        vec2 per = vec2(0.25 * wrap.x / w0.x, 0.25 * wrap.y);
+        float n = octaves(vec3(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0,
+            lfp - 2.0, per);
         float v = q.y + w0.y * n;
         return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), w0.z);
     }
     case 9u: {
-        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y
+        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y; with wrap, the
+        // torus distance to the centre
         vec2 qc = vec2(c * w1.x + s * w1.y, -s * w1.x + c * w1.y);
         vec3 p = vec3((q.x - qc.x) / w0.w, q.y - qc.y, q.z);
-        float n = octaves(vec3(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0);
+        vec2 per = vec2(wrap.x / w0.w, wrap.y);
+        if (wrap.x > 0.0) {
+            p.x -= per.x * floor(p.x / per.x + 0.5);
+            p.y -= per.y * floor(p.y / per.y + 0.5);
+        }
+        float n = octaves(vec3(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0,
+            0.25 * per);
         float r = sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
         return pow(max(0.5 + 0.5 * sin(6.2831855 * r), 1e-6), w0.y);
     }

@@ -997,8 +997,9 @@ impl ProctexApp {
                 .add_enabled(self.params.is_some(), egui::Button::new("PNG…").small())
                 .on_hover_text(
                     "Download a seamless tile of the texture, one photo pixel per tile pixel \
-                     (every band made periodic over the tile; solid textures: their plane \
-                     texture)",
+                     (every band made periodic over the tile; structured models: the pattern \
+                     turned to the nearest quarter turn, a whole number of cells over the tile; \
+                     solid textures: their plane texture)",
                 );
             self.record("export.png", &r);
             if r.clicked()

@@ -74,8 +74,10 @@ OPTIONS:
     --period                render exactly one period of the texture (16384 texels for 8
                             bands, minified into the image)
     --seamless              a seamless N×N tile at the pixel size (--size N, 16..=8192):
-                            every band made periodic over the tile (what the app's PNG tile
-                            export renders); prints how its wrap compares with its interior
+                            every band made periodic over the tile, a structured model's
+                            pattern turned to the nearest quarter turn with a whole number of
+                            cells (what the app's PNG tile export renders); prints how its
+                            wrap compares with its interior
     --depth 8|16            bits per channel of the PNG (default 8)";
 
 const SYNTH_HELP: &str = "\
