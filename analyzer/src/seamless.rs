@@ -83,11 +83,8 @@ impl Seamless {
         }
         let mut pattern = [0.0f32; 4];
         if prep.pattern[0] != 0 {
-            let [is, pc, ps, _] = prep.pattern_transform;
-            let turn = f64::from(prep.rot[1]).atan2(f64::from(prep.rot[0]))
-                + f64::from(ps).atan2(f64::from(pc));
-            let quarter = (turn / std::f64::consts::FRAC_PI_2).round().rem_euclid(4.0) as usize;
-            let [c, s] = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]][quarter];
+            let is = prep.pattern_transform[0];
+            let [c, s] = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]][quarter_turn(prep).1];
             let [px, py] = crate::pattern::tile_periods(prep, (span * is as f64) as f32);
             pattern = [px, py, c, s];
         }
@@ -108,6 +105,31 @@ impl Seamless {
         v.extend(self.pattern);
         v.iter().flat_map(|x| x.to_le_bytes()).collect()
     }
+}
+
+/// A structured model's pattern rotation in the texture (the texture's turn plus the
+/// pattern's, degrees in [0, 360)) and the quarter turn (0–3) a seamless tile renders it at.
+fn quarter_turn(prep: &Prepared) -> (f64, usize) {
+    let [_, pc, ps, _] = prep.pattern_transform;
+    let turn =
+        f64::from(prep.rot[1]).atan2(f64::from(prep.rot[0])) + f64::from(ps).atan2(f64::from(pc));
+    let quarter = (turn / std::f64::consts::FRAC_PI_2).round().rem_euclid(4.0) as usize;
+    (turn.to_degrees().rem_euclid(360.0), quarter)
+}
+
+/// Where a seamless tile turns a structured model's pattern: its rotation in the texture and
+/// the rotation the tile renders (degrees in [0, 360)), when they differ by more than half a
+/// degree; `None` for the noise model and for a pattern already at a quarter turn. What the
+/// CLI and the app tell the user after a tile.
+pub fn tile_turn(params: &Params) -> Option<(f32, f32)> {
+    let prep = Prepared::new(&plane(params));
+    if prep.pattern[0] == 0 {
+        return None;
+    }
+    let (from, quarter) = quarter_turn(&prep);
+    let to = 90.0 * quarter as f64;
+    let off = (from - to).rem_euclid(360.0);
+    (off.min(360.0 - off) > 0.5).then_some((from as f32, to as f32))
 }
 
 /// Size of [`Seamless::uniform_bytes`].
@@ -336,6 +358,23 @@ mod tests {
         assert!(Seamless::new(&prep, 128, 8, 1.0).is_err());
         assert!(Seamless::new(&prep, 128, MAX_TILE + 1, 1.0).is_err());
         assert!(Seamless::new(&prep, 128, 64, 0.0).is_err());
+    }
+
+    #[test]
+    fn tile_turn_names_the_quarter_turn() {
+        use crate::pattern::{Pattern, PatternKind};
+        let turned = |rot: f32, texture: f32| {
+            let mut pat = Pattern::new(PatternKind::Brick, 20.0);
+            pat.rotation_deg = rot;
+            let mut p = crate::structure::shell(pat, 1, false);
+            p.transform.rotation_deg = texture;
+            tile_turn(&p).map(|(a, b)| (a.round(), b))
+        };
+        assert_eq!(turned(30.0, 0.0), Some((30.0, 0.0)));
+        assert_eq!(turned(100.0, 10.0), Some((110.0, 90.0)));
+        assert_eq!(turned(-100.0, 0.0), Some((260.0, 270.0)));
+        assert_eq!(turned(90.0, 0.0), None);
+        assert_eq!(tile_turn(&some_params()), None);
     }
 
     /// Every pattern family, at rotations that snap to each quarter turn and at scales from a

@@ -365,6 +365,9 @@ struct TileJob {
     /// Rows handed to the page.
     done_rows: u32,
     started_ms: f64,
+    /// A structured model's pattern rotation and the quarter turn the tile renders it at
+    /// (`seamless::tile_turn`), said when the tile is done.
+    turn: Option<(f32, f32)>,
 }
 
 /// The presets list, its thumbnails and the morph between presets.
@@ -1055,6 +1058,7 @@ impl ProctexApp {
             next_row: 0,
             done_rows: 0,
             started_ms: now_ms(),
+            turn: proctex::seamless::tile_turn(params),
         });
         ctx.request_repaint();
     }
@@ -1118,8 +1122,12 @@ impl ProctexApp {
         if job.done_rows >= size {
             let name = format!("proctex-tile-{size}-{}bit.png", job.bits);
             host("tileEnd", &[JsValue::from_str(&name)]);
+            let turn = job
+                .turn
+                .map(|(from, to)| format!("; the pattern turned {from:.1}° → {to:.0}° to repeat"))
+                .unwrap_or_default();
             self.status_note = Some(format!(
-                "PNG tile {size}² ({}-bit) rendered in {:.1} s",
+                "PNG tile {size}² ({}-bit) rendered in {:.1} s{turn}",
                 job.bits,
                 (now_ms() - job.started_ms) / 1000.0
             ));

@@ -598,6 +598,12 @@ fn cmd_render(mut a: Args) -> Result<()> {
             pc.ratio(),
             pr.ratio()
         );
+        if let Some((from, to)) = proctex::seamless::tile_turn(&params) {
+            println!(
+                "the pattern, turned {from:.1}° in the texture, is turned {to:.0}° in the tile \
+                 (a lattice repeats over a square tile only at a quarter turn)"
+            );
+        }
         img
     } else {
         render(&params, w, h, &view)
