@@ -451,9 +451,7 @@ impl MorphStructure {
             out.ramp[0][i] = [ca[0], ca[1], ca[2], x];
             out.ramp[1][i] = [cb[0], cb[1], cb[2], x];
         }
-        let r0 = p[0].rotation_deg.to_radians();
-        let inv = 1.0 / p[0].scale;
-        out.transform = [inv, r0.cos(), r0.sin(), inv.log2()];
+        out.transform = crate::render::pattern_transform(p[0]);
         out.pose = [
             p[0].scale.ln(),
             p[0].rotation_deg,

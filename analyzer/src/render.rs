@@ -102,9 +102,7 @@ impl Prepared {
             let pat = &m.pattern;
             p.pattern[0] = pat.kind.index();
             p.pattern[1] = m.ramp.len() as u32;
-            let r = pat.rotation_deg.to_radians();
-            let is = 1.0 / pat.scale;
-            p.pattern_transform = [is, r.cos(), r.sin(), is.log2()];
+            p.pattern_transform = pattern_transform(pat);
             for (i, v) in pat.vector().into_iter().enumerate() {
                 p.pattern_values[i] = v;
             }
@@ -266,6 +264,14 @@ impl Prepared {
 #[inline]
 pub fn offset_coeffs(f: f32, n: f32) -> f32 {
     (f * n).floor() + 0.5
+}
+
+/// A pattern's placement as the GPU reads it (`Params.pattern_transform`): 1/scale, cos and sin
+/// of its rotation, log2(1/scale).
+pub fn pattern_transform(pat: &crate::pattern::Pattern) -> [f32; 4] {
+    let r = pat.rotation_deg.to_radians();
+    let is = 1.0 / pat.scale;
+    [is, r.cos(), r.sin(), is.log2()]
 }
 
 /// The offsets of a pattern's noise octaves (in coefficients of a tile of side `tile_n`) for
