@@ -462,6 +462,18 @@ pub struct RampStop {
     pub rgb: [f32; 3],
 }
 
+/// The two-tone paper's tone swap (§3) on a fitted ramp: the ramp read backwards, so that
+/// structure value `s` gets the colour `1 − s` had (the stops reversed, each `at` → `1 − at`,
+/// which keeps them non-decreasing). Retrieval chooses the pairing by the descriptor's
+/// quantiles alone (the Gabor magnitudes are the same for `s` and `1 − s`); where it pairs a
+/// pattern's cells with the photo's joints, this is the one-click fix (the app's "swap tones").
+pub fn swap_tones(ramp: &mut [RampStop]) {
+    ramp.reverse();
+    for stop in ramp.iter_mut() {
+        stop.at = 1.0 - stop.at;
+    }
+}
+
 /// A smooth step from 0 at `e0` to 1 at `e0 + w` (`w > 0`): the soft edge of joints.
 #[inline]
 pub fn soft_step(e0: f32, w: f32, x: f32) -> f32 {
@@ -792,6 +804,42 @@ pub fn ramp_rows(r: &[[f32; 4]], s: f32) -> [f32; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn swapped_tones_read_the_ramp_backwards() {
+        let mut r = vec![
+            RampStop {
+                at: 0.1,
+                rgb: [0.1, 0.2, 0.3],
+            },
+            RampStop {
+                at: 0.35,
+                rgb: [0.9, 0.5, 0.0],
+            },
+            RampStop {
+                at: 0.8,
+                rgb: [0.4, 0.7, 1.0],
+            },
+        ];
+        let before = crate::morph::ramp_table(&r);
+        swap_tones(&mut r);
+        assert!(r.windows(2).all(|w| w[0].at <= w[1].at));
+        let after = crate::morph::ramp_table(&r);
+        for i in 0..=100 {
+            let s = i as f32 / 100.0;
+            let (a, b) = (ramp_rows(&after, s), ramp_rows(&before, 1.0 - s));
+            for c in 0..3 {
+                assert!((a[c] - b[c]).abs() < 1e-5, "s {s}: {a:?} vs {b:?}");
+            }
+        }
+        swap_tones(&mut r);
+        for (a, b) in crate::morph::ramp_table(&r).iter().zip(&before) {
+            assert!(
+                a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-6),
+                "{a:?} vs {b:?}"
+            );
+        }
+    }
 
     #[test]
     fn kinds_round_trip_their_names_and_indices() {

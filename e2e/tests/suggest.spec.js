@@ -78,7 +78,7 @@ test("a structured model's sliders change the image", async ({ page }) => {
   expect(meanDiff(await grab(page, square), before)).toBeGreaterThan(2);
 });
 
-test("the adopted structured model's output tone curve toggles", async ({ page }) => {
+test("the adopted structured model's output tone curve toggles and its tones swap", async ({ page }) => {
   await openApp(page);
   const s = await suggestionsFor(page, 'skimage_brick_512.png');
   const params = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
@@ -91,7 +91,21 @@ test("the adopted structured model's output tone curve toggles", async ({ page }
   await waitFrames(page, 3);
   const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   expect(after.model.tone.enabled).toBe(false);
-  expect(meanDiff(await grab(page, square), before)).toBeGreaterThan(1);
+  const untoned = await grab(page, square);
+  expect(meanDiff(untoned, before)).toBeGreaterThan(1);
+  // Swap tones: the ramp is read backwards (stops reversed, at -> 1 - at), the image changes.
+  await clickWidget(page, 'ramp.swap');
+  await waitFrames(page, 3);
+  const swapped = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  const n = after.model.ramp.length;
+  expect(swapped.model.ramp.length).toBe(n);
+  for (let i = 0; i < n; i++) {
+    const a = swapped.model.ramp[i];
+    const b = after.model.ramp[n - 1 - i];
+    expect(a.at).toBeCloseTo(1 - b.at, 5);
+    expect(a.rgb).toEqual(b.rgb);
+  }
+  expect(meanDiff(await grab(page, square), untoned)).toBeGreaterThan(2);
 });
 
 test('Cancel stops the refinement and ranks what there is', async ({ page }) => {

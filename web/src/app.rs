@@ -2398,7 +2398,17 @@ fn structure_controls(
     if values != pat.vector() {
         pat.set_vector(&values);
     }
-    ui.label("Colour ramp along the structure value");
+    ui.horizontal(|ui| {
+        ui.label("Colour ramp along the structure value");
+        let r = ui.button("swap tones").on_hover_text(
+            "Reads the ramp backwards (the two-tone paper's tone swap): the pattern's \
+                 cells take the joints' colours and the joints the cells'",
+        );
+        if r.clicked() {
+            proctex::pattern::swap_tones(&mut m.ramp);
+        }
+        rects.push(("ramp.swap".into(), r));
+    });
     let n = m.ramp.len();
     for i in 0..n {
         let lo = if i == 0 { 0.0 } else { m.ramp[i - 1].at };
