@@ -267,6 +267,38 @@ pub struct Fidelity {
     pub floor_colour_ratio: f64,
     /// `floor.structure / halves.structure`.
     pub floor_structure_ratio: f64,
+    /// The mean distance of the syntheses from each of the four source patches (top-left,
+    /// bottom-left, top-right, bottom-right) to the other patch of its pair: what
+    /// [`ratio_difference`] pairs.
+    pub per_patch: [Distances; 4],
+}
+
+/// The difference of two models' fidelity ratios on one photo (`a` − `b`, both measured with
+/// the same seeds), and its standard error: the per-patch differences of mean distance over
+/// `halves`, averaged over the four source patches, the error their spread over `√4`. The
+/// patches, not the syntheses, are the independent samples: the syntheses from one patch
+/// share its pixels, and the seeds only vary the render (a model that fits one patch's
+/// peculiarities is as wrong with every seed). Four samples make a rough error, but an honest
+/// one: a difference within it is not evidence that either model is better on that photo.
+pub fn ratio_difference(a: &Fidelity, b: &Fidelity) -> (Distances, Distances) {
+    let diffs: Vec<Distances> = a
+        .per_patch
+        .iter()
+        .zip(&b.per_patch)
+        .map(|(x, y)| {
+            x.zip(*y, |p, q| p - q)
+                .zip(a.halves, |d, h| d / h.max(1e-9))
+        })
+        .collect();
+    let n = diffs.len() as f64;
+    let mean = diffs
+        .iter()
+        .fold(Distances::ZERO, |acc, d| acc.zip(*d, |x, y| x + y / n));
+    let var = diffs.iter().fold(Distances::ZERO, |acc, d| {
+        let dev = d.zip(mean, |x, m| x - m);
+        acc.zip(dev, |x, v| x + v * v / (n - 1.0))
+    });
+    (mean, var.zip(Distances::ZERO, |v, _| (v / n).sqrt()))
 }
 
 /// Analyses with the noise model and renders a texture of exactly the photo's pixel size.
@@ -321,14 +353,18 @@ pub fn fidelity(
     let (mut halves, mut synthesis, mut floor) =
         (Distances::ZERO, Distances::ZERO, Distances::ZERO);
     let mut n = 0.0;
-    for (a, b) in &pairs {
+    let mut per_patch = [Distances::ZERO; 4];
+    for (pi, (a, b)) in pairs.iter().enumerate() {
         let d = distances(a, b);
         halves = halves.zip(d, |x, y| x + y / pairs.len() as f64);
         for &seed in seeds {
             let o = Options { seed, ..*opts };
-            for (src, other) in [(a, b), (b, a)] {
+            for (di, (src, other)) in [(a, b), (b, a)].into_iter().enumerate() {
                 let syn = synthesize_model(src, &o, choice, refinement)?.0;
-                synthesis = synthesis.zip(distances(&syn, other), |x, y| x + y);
+                let d = distances(&syn, other);
+                synthesis = synthesis.zip(d, |x, y| x + y);
+                per_patch[2 * pi + di] =
+                    per_patch[2 * pi + di].zip(d, |x, y| x + y / seeds.len() as f64);
                 floor = floor.zip(distances(&random_phase(src, seed), other), |x, y| x + y);
                 n += 1.0;
             }
@@ -348,5 +384,51 @@ pub fn fidelity(
         floor_spectrum_ratio: fr.spectrum_db,
         floor_colour_ratio: fr.colour,
         floor_structure_ratio: fr.structure,
+        per_patch,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fidelity_with(halves: f64, per_patch: [f64; 4]) -> Fidelity {
+        let d = |v: f64| Distances {
+            spectrum_db: v,
+            colour: v / 100.0,
+            structure: 2.0 * v,
+        };
+        Fidelity {
+            halves: d(halves),
+            synthesis: d(per_patch.iter().sum::<f64>() / 4.0),
+            spectrum_ratio: 0.0,
+            colour_ratio: 0.0,
+            structure_ratio: 0.0,
+            floor: Distances::ZERO,
+            floor_spectrum_ratio: 0.0,
+            floor_colour_ratio: 0.0,
+            floor_structure_ratio: 0.0,
+            per_patch: per_patch.map(d),
+        }
+    }
+
+    #[test]
+    fn ratio_difference_is_the_mean_over_patches_with_its_standard_error() {
+        let a = fidelity_with(2.0, [3.0, 4.0, 5.0, 6.0]);
+        let b = fidelity_with(2.0, [2.0; 4]);
+        let (mean, se) = ratio_difference(&a, &b);
+        // Per patch (a − b) / halves: 0.5, 1, 1.5, 2 (in every distance, each in its own units).
+        let want_se = ((0.75f64.powi(2) + 0.25f64.powi(2)) * 2.0 / 3.0 / 4.0).sqrt();
+        for (m, s) in [
+            (mean.spectrum_db, se.spectrum_db),
+            (mean.colour, se.colour),
+            (mean.structure, se.structure),
+        ] {
+            assert!((m - 1.25).abs() < 1e-12, "{m}");
+            assert!((s - want_se).abs() < 1e-12, "{s}");
+        }
+        // The mean is the difference of the two ratios the table prints.
+        let (r, _) = ratio_difference(&a, &a);
+        assert_eq!((r.spectrum_db, r.colour, r.structure), (0.0, 0.0, 0.0));
+    }
 }

@@ -183,6 +183,31 @@ fn bad_input_exits_1_with_a_message() {
 }
 
 #[test]
+fn fidelity_against_another_model_prints_the_paired_difference() {
+    // The same model against itself: the same syntheses, so the difference and its error are
+    // exactly zero (deterministic), and the JSON carries both results.
+    let photo = sample("stk_blackrock_256.png");
+    let run = |seeds: &str, json: bool| {
+        let mut args = vec!["fidelity", &photo, "--against", "noise", "--seeds", seeds];
+        if json {
+            args.push("--json");
+        }
+        let o = proctex(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+    };
+    let v: serde_json::Value = serde_json::from_str(run("2", true).trim()).unwrap();
+    assert_eq!(v["result"], v["against"]["result"]);
+    for k in ["spectrum_db", "colour", "structure"] {
+        assert_eq!(v["against"]["ratio_difference"][k], 0.0, "{k}");
+        assert_eq!(v["against"]["standard_error"][k], 0.0, "{k}");
+    }
+    assert_eq!(v["result"]["per_patch"].as_array().unwrap().len(), 4);
+    let text = run("1", false);
+    assert!(text.contains("difference +0.00 ± 0.00"), "{text}");
+}
+
+#[test]
 fn bad_usage_exits_2() {
     for args in [
         vec!["frobnicate"],
@@ -194,6 +219,7 @@ fn bad_usage_exits_2() {
         vec!["render", "p.json"],
         vec!["synth", "x.png"],
         vec!["evaluate", "a.png"],
+        vec!["fidelity", "x.png", "--against", "bogus"],
     ] {
         let o = proctex(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use proctex::analyze::Options;
 use proctex::db::Db;
-use proctex::evaluate::{distances, fidelity, synthesize_model};
+use proctex::evaluate::{distances, fidelity, ratio_difference, synthesize_model};
 use proctex::input::{Crop, Photo};
 use proctex::params::Params;
 use proctex::render::{Image, View, period_texels, render};
@@ -97,14 +97,17 @@ Prints texture distances between A and B (any sizes):
                  distribution of structure; the retrieval descriptor)";
 
 const FIDELITY_HELP: &str = "\
-proctex fidelity PHOTO... [--seeds N] [--model M] [--json] [analyze OPTIONS]
+proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--json] [analyze OPTIONS]
 
 For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
 bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
 other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio
 (near 1: as close as another patch of the same material), and the floor: the same ratio for
 the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
-can do). --model as for `analyze`, but noise by default (the README's noise-only table).";
+can do). --model as for `analyze`, but noise by default (the README's noise-only table).
+--against M2 also runs M2 with the same seeds and prints the difference of the ratios (M − M2;
+negative: M is nearer) with its standard error over the four source patches, the independent
+samples (a difference within about twice it is not evidence either way).";
 
 const MORPH_HELP: &str = "\
 proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
@@ -698,6 +701,7 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut model = ModelChoice::Noise;
     let mut refinement = Refinement::default();
     let mut files = Vec::new();
+    let mut against = None;
     let (mut nseeds, mut json) = (3u32, false);
     while let Some(arg) = a.next() {
         match arg.as_str() {
@@ -707,6 +711,7 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
             }
             "--seeds" => nseeds = a.parsed(&arg)?,
             "--model" => model = model_choice(&mut a, &arg)?,
+            "--against" => against = Some(model_choice(&mut a, &arg)?),
             "--refine" => refinement = refinement_of(a.parsed(&arg)?),
             "--json" => json = true,
             f if analysis_flag(f, &mut a, &mut o)? => {}
@@ -739,12 +744,27 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
     for f in &files {
         let photo = load_photo(f)?;
         let r = fidelity(&photo, &o, model, refinement, &seeds)?;
+        let diff = match against {
+            Some(m) => {
+                let other = fidelity(&photo, &o, m, refinement, &seeds)?;
+                Some((other, ratio_difference(&r, &other)))
+            }
+            None => None,
+        };
         let name = Path::new(f)
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|| f.clone());
         if json {
-            println!("{}", serde_json::json!({ "photo": name, "result": r }));
+            let mut v = serde_json::json!({ "photo": name, "result": r });
+            if let Some((other, (mean, se))) = &diff {
+                v["against"] = serde_json::json!({
+                    "result": other,
+                    "ratio_difference": mean,
+                    "standard_error": se,
+                });
+            }
+            println!("{v}");
         } else {
             println!(
                 "{:<32} {:>8.3} {:>8.3} {:>6.2} {:>7.2}   {:>8.4} {:>8.4} {:>6.2} {:>7.2}   {:>8.3} {:>8.3} {:>6.2} {:>7.2}",
@@ -762,6 +782,20 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
                 r.structure_ratio,
                 r.floor_structure_ratio
             );
+            if let Some((other, (mean, se))) = &diff {
+                println!(
+                    "  against it: ratios {:.2} / {:.2} / {:.2}; difference {:+.2} ± {:.2} / {:+.2} ± {:.2} / {:+.2} ± {:.2} (spectrum / colour / structure)",
+                    other.spectrum_ratio,
+                    other.colour_ratio,
+                    other.structure_ratio,
+                    mean.spectrum_db,
+                    se.spectrum_db,
+                    mean.colour,
+                    se.colour,
+                    mean.structure,
+                    se.structure
+                );
+            }
         }
     }
     Ok(())
