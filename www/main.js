@@ -44,10 +44,10 @@ worker.onmessage = (e) => {
     else if (m.type === 'suggestError') wasm.suggestionsFailed(m.message);
     else {
       lastSuggestions = {
-        rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled,
+        rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled, timedOut: m.timedOut,
         helpers: m.helpers, helped: m.helped, count: (lastSuggestions?.count ?? 0) + 1,
       };
-      wasm.suggestionsDone(m.rows, m.thumbs, m.cancelled, m.best ?? undefined);
+      wasm.suggestionsDone(m.rows, m.thumbs, m.cancelled, m.timedOut, m.best ?? undefined);
     }
     return;
   }
@@ -383,6 +383,8 @@ window.proctexHost = {
     else wasm.suggestionAdopted(m.index, m.report);
   },
   cancelSuggestions: () => worker.postMessage({ type: 'cancelSuggest' }),
+  // The refinement's time budget in seconds (0: none), for the running refinement and the next.
+  setRefineBudget: (seconds) => worker.postMessage({ type: 'setRefineBudget', seconds }),
   downloadText,
   tileBegin,
   tileRows,
@@ -428,7 +430,8 @@ window.proctex = {
   },
   lastTimings: () => lastTimings,
   // The last ranked suggestions: rows (name, score, distance, retrieval, refined), the
-  // milliseconds from retrieval to ranking, whether Cancel cut the refinement, how many
+  // milliseconds from retrieval to ranking, whether Cancel (or the time budget: `timedOut`)
+  // cut the refinement, how many
   // families the helper workers refined (`helped`, of `helpers` helpers), and how many
   // rankings the page has received (`count`).
   lastSuggestions: () => lastSuggestions,

@@ -72,6 +72,26 @@ dbReady.catch(() => {}); // reported per photo, below
 // nothing left to refine and waits for them.
 let suggestion = null;
 let tokens = 0;
+// The refinement's time budget (milliseconds from the end of retrieval; 0: none), set by the
+// app. When it runs out, the refinement stops as Cancel stops it: the family being refined
+// finishes its step (one family, a second or two), and the list is ranked with what there is.
+let refineBudgetMs = 0;
+
+// (Re)arms the time budget of suggestion `s` (the budget may change while it runs).
+function armBudget(s) {
+  clearTimeout(s.budgetTimer);
+  s.budgetTimer = undefined;
+  if (refineBudgetMs <= 0 || s.finished || s.cancelled) return;
+  s.budgetTimer = setTimeout(() => {
+    if (suggestion !== s || s.finished || s.cancelled) return;
+    s.timedOut = true;
+    s.cancelled = true;
+    if (s.waiting) {
+      s.waiting = false;
+      scheduleStep(s);
+    }
+  }, Math.max(0, s.t0 + refineBudgetMs - performance.now()));
+}
 
 // ---- Helper workers: as many as the machine has cores beyond this worker's and the page's
 // (at most 3). A helper that fails is retired and its family goes back to `todo`.
@@ -138,7 +158,10 @@ function dispatch(s, h) {
 }
 
 async function startSuggestions(id, crop, seed) {
-  if (suggestion) suggestion.job.free();
+  if (suggestion) {
+    clearTimeout(suggestion.budgetTimer);
+    suggestion.job.free();
+  }
   suggestion = null;
   try {
     await dbReady;
@@ -158,11 +181,12 @@ async function startSuggestions(id, crop, seed) {
     return;
   }
   const s = {
-    job, id, token: ++tokens, cancelled: false, t0: performance.now(),
+    job, id, token: ++tokens, cancelled: false, timedOut: false, t0: performance.now(),
     todo: Array.from({ length: job.steps() }, (_, i) => i), inflight: 0, finished: false,
     waiting: false, helped: 0, helpers: 0,
   };
   suggestion = s;
+  armBudget(s);
   postMessage({ type: 'suggestProgress', id, done: 0, total: job.steps() });
   const pool = helperPool().filter((h) => !h.broken).slice(0, helperLimit);
   if (pool.length > 0 && s.todo.length > 1) {
@@ -202,12 +226,13 @@ function suggestStep(s) {
     return;
   }
   s.finished = true;
+  clearTimeout(s.budgetTimer);
   const rows = s.job.rank();
   const thumbs = s.job.thumbnails();
   const first = JSON.parse(rows)[0];
   const best = first && first.name !== 'noise' ? s.job.report(0) : null;
   postMessage({
-    type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled,
+    type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled, timedOut: s.timedOut,
     ms: performance.now() - s.t0, helpers: s.helpers, helped: s.helped,
   }, [thumbs.buffer]);
 }
@@ -309,6 +334,11 @@ onmessage = (e) => {
       helpers = null;
       helperScript = m.script;
     }
+    return;
+  }
+  if (m.type === 'setRefineBudget') {
+    refineBudgetMs = Math.max(0, Number(m.seconds) || 0) * 1000;
+    if (suggestion) armBudget(suggestion);
     return;
   }
   if (m.type === 'cancelSuggest') {

@@ -17,7 +17,7 @@ use crate::error::Result;
 use crate::gabor::{describe, descriptor_image};
 use crate::input::{Crop, Photo};
 use crate::render::{View, render};
-use crate::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model};
+use crate::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model_progress};
 use crate::rng;
 use crate::spectrum::{fft2_real, ifft2, spectrum_real};
 
@@ -314,7 +314,19 @@ pub fn synthesize_model(
     choice: ModelChoice,
     refinement: Refinement,
 ) -> Result<(Photo, Analysis, Vec<Suggestion>)> {
-    let (a, suggestions) = analyze_photo_model(photo, opts, choice, refinement)?;
+    synthesize_model_progress(photo, opts, choice, refinement, &|_, _| true)
+}
+
+/// [`synthesize_model`] with the refinement's `progress`
+/// ([`crate::retrieve::analyze_with_model_progress`]).
+pub fn synthesize_model_progress(
+    photo: &Photo,
+    opts: &Options,
+    choice: ModelChoice,
+    refinement: Refinement,
+    progress: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Result<(Photo, Analysis, Vec<Suggestion>)> {
+    let (a, suggestions) = analyze_photo_model_progress(photo, opts, choice, refinement, progress)?;
     let world_per_pixel = 1.0; // world units are photo pixels
     let img = render(
         &a.params,

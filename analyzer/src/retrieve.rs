@@ -449,10 +449,23 @@ pub fn analyze_with_model(
     choice: ModelChoice,
     refinement: Refinement,
 ) -> (Analysis, Vec<Suggestion>) {
+    analyze_with_model_progress(db, photo, opts, choice, refinement, &|_, _| true)
+}
+
+/// [`analyze_with_model`] with the refinement's `progress` as [`suggest_with`] takes it
+/// (returning `false` stops the refinement: Cancel, or the CLI's `--refine-seconds`).
+pub fn analyze_with_model_progress(
+    db: &Db,
+    photo: &Photo,
+    opts: &Options,
+    choice: ModelChoice,
+    refinement: Refinement,
+    progress: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> (Analysis, Vec<Suggestion>) {
     if choice == ModelChoice::Noise {
         return (analyze_prepared(photo, opts), Vec::new());
     }
-    let suggestions = suggest_with(db, photo, opts, refinement, &|_, _| true);
+    let suggestions = suggest_with(db, photo, opts, refinement, progress);
     let pick = suggestions.iter().find(|s| match choice {
         ModelChoice::Auto => true,
         ModelChoice::Kind(k) => s.name == k.name(),
@@ -473,9 +486,20 @@ pub fn analyze_photo_model(
     choice: ModelChoice,
     refinement: Refinement,
 ) -> Result<(Analysis, Vec<Suggestion>)> {
+    analyze_photo_model_progress(photo, opts, choice, refinement, &|_, _| true)
+}
+
+/// [`analyze_photo_model`] with the refinement's `progress` ([`analyze_with_model_progress`]).
+pub fn analyze_photo_model_progress(
+    photo: &Photo,
+    opts: &Options,
+    choice: ModelChoice,
+    refinement: Refinement,
+    progress: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Result<(Analysis, Vec<Suggestion>)> {
     let mut suggestions = Vec::new();
     let analysis = analyze_photo_with(photo, opts, |p, o| {
-        let (a, s) = analyze_with_model(Db::shipped(), p, o, choice, refinement);
+        let (a, s) = analyze_with_model_progress(Db::shipped(), p, o, choice, refinement, progress);
         suggestions = s;
         a
     })?;

@@ -183,6 +183,31 @@ fn bad_input_exits_1_with_a_message() {
 }
 
 #[test]
+fn a_refinement_time_budget_stops_the_refinement_and_says_so() {
+    let o = proctex(&[
+        "analyze",
+        &sample("stk_wood_planks1_256.png"),
+        "--refine-seconds",
+        "0.001",
+        "-o",
+        &tmp("budget.json"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("time budget of 0.001 s spent after"), "{out}");
+    assert!(out.contains("model: "), "{out}");
+    // Without a budget, no such line.
+    let o = proctex(&[
+        "analyze",
+        &sample("stk_wood_planks1_256.png"),
+        "--refine",
+        "4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stdout(&o).contains("time budget"), "{}", stdout(&o));
+}
+
+#[test]
 fn fidelity_against_another_model_prints_the_paired_difference() {
     // The same model against itself: the same syntheses, so the difference and its error are
     // exactly zero (deterministic), and the JSON carries both results.
@@ -220,6 +245,8 @@ fn bad_usage_exits_2() {
         vec!["synth", "x.png"],
         vec!["evaluate", "a.png"],
         vec!["fidelity", "x.png", "--against", "bogus"],
+        vec!["analyze", "x.png", "--refine-seconds", "0"],
+        vec!["synth", "x.png", "-o", "y.png", "--refine-seconds", "nan"],
     ] {
         let o = proctex(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));

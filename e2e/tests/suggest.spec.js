@@ -129,6 +129,35 @@ test('Cancel stops the refinement and ranks what there is', async ({ page }) => 
   expect(t.rows.filter((r) => r.retrieval !== null && r.refined === null).length).toBeGreaterThan(0);
 });
 
+test('a refinement time budget set in the UI stops the refinement and ranks what there is', async ({ page }) => {
+  await openApp(page);
+  // The budget control (a drag value showing "none"): click it, type 0.3 s, Enter.
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    return !!window.proctex.state().widgets['suggest.budget'];
+  }, null, { polling: 100, timeout: 60_000 });
+  await clickWidget(page, 'suggest.budget');
+  await page.keyboard.press('Control+A');
+  await page.keyboard.type('0.3');
+  await page.keyboard.press('Enter');
+  await waitFrames(page, 3);
+  const before = (await page.evaluate(() => window.proctex.lastSuggestions()))?.count ?? 0;
+  await page.evaluate(() => window.proctex.loadSample('skimage_brick_512.png'));
+  await page.waitForFunction((n) => {
+    window.proctex.requestRepaint();
+    const t = window.proctex.lastSuggestions();
+    const s = window.proctex.state();
+    return t && t.count > n && s.photo === 'skimage_brick_512.png' && !s.suggest_progress;
+  }, before, { polling: 100, timeout: 120_000 });
+  const t = await page.evaluate(() => window.proctex.lastSuggestions());
+  expect(t.timedOut).toBe(true);
+  expect(t.cancelled).toBe(true);
+  expect(t.rows.length).toBe(10);
+  // Some families kept their retrieved pattern (no refined distance); the list is ranked.
+  expect(t.rows.filter((r) => r.retrieval !== null && r.refined === null).length).toBeGreaterThan(0);
+  expect((await state(page)).suggestions.length).toBe(10);
+});
+
 test('when the refinement helpers cannot start, the worker refines every family itself', async ({ page }) => {
   // The helper script fails to load (Playwright's routing does not reach a worker's workers,
   // so the page points the helpers at a missing script): each helper is retired and its

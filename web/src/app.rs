@@ -72,6 +72,8 @@ pub enum Command {
         thumbnails: Vec<u8>,
         /// The refinement was cancelled (families not reached keep their retrieved pattern).
         cancelled: bool,
+        /// It was the refinement's time budget that stopped it.
+        timed_out: bool,
         /// The first row's report when it is a structured model (adopted by default).
         best: Option<Box<Report>>,
     },
@@ -321,6 +323,8 @@ pub struct ProctexApp {
     /// The GPU device and queue (from eframe), for off-screen work such as the PNG tile.
     gpu: Option<(wgpu::Device, wgpu::Queue)>,
     suggest: SuggestState,
+    /// The refinement's time budget in seconds (0: none, the evaluation budget alone).
+    refine_budget_s: f32,
 }
 
 /// The automatic model choice's list (issue 5): filled by the worker after each analysis.
@@ -331,6 +335,8 @@ struct SuggestState {
     /// Families refined, in all, while the worker refines.
     progress: Option<(u32, u32)>,
     cancelled: bool,
+    /// The refinement's time budget stopped it (then `cancelled` is set too).
+    timed_out: bool,
     /// Row the current params were adopted from.
     adopted: Option<usize>,
     /// Row being fitted by the worker after a click.
@@ -433,6 +439,7 @@ impl ProctexApp {
             },
             tile_job: None,
             suggest: SuggestState::default(),
+            refine_budget_s: 0.0,
             gpu: None,
             presets: PresetsState {
                 duration_s: 4.0,
@@ -557,7 +564,7 @@ impl ProctexApp {
         ctx: &egui::Context,
         rows: Vec<SuggestionRow>,
         thumbnails: Vec<u8>,
-        cancelled: bool,
+        (cancelled, timed_out): (bool, bool),
         best: Option<Box<Report>>,
     ) {
         let side = THUMB_SIDE as usize;
@@ -579,6 +586,7 @@ impl ProctexApp {
             thumbs,
             progress: None,
             cancelled,
+            timed_out,
             ..SuggestState::default()
         };
         match best {
@@ -648,7 +656,17 @@ impl ProctexApp {
         } else if self.suggest.rows.is_empty() && self.suggest.error.is_none() {
             ui.label("Suggestions appear after the analysis.");
         }
-        if self.suggest.cancelled {
+        if self.suggest.timed_out {
+            let refined = self
+                .suggest
+                .rows
+                .iter()
+                .filter(|r| r.refined.is_some())
+                .count();
+            ui.label(format!(
+                "Time budget reached: {refined} models refined, the others ranked by retrieval."
+            ));
+        } else if self.suggest.cancelled {
             ui.label("Refinement cancelled: unrefined models ranked by retrieval.");
         }
         let adopted = self.adopted_row();
@@ -733,6 +751,49 @@ impl ProctexApp {
         }
     }
 
+    /// The refinement's time budget, in the "Model suggestions" header row (so that it takes
+    /// no room from the list): 0 shows "none".
+    fn refine_budget_control(&mut self, ui: &mut egui::Ui) {
+        ui.label("Model suggestions");
+        ui.add_space(12.0);
+        ui.label("time budget");
+        let r = ui
+            .add(
+                egui::DragValue::new(&mut self.refine_budget_s)
+                    .range(0.0..=120.0)
+                    .speed(0.1)
+                    .max_decimals(1)
+                    .custom_formatter(|v, _| {
+                        if v <= 0.0 {
+                            "none".into()
+                        } else {
+                            format!("{v:.1} s")
+                        }
+                    })
+                    .custom_parser(|t| {
+                        let t = t.trim().trim_end_matches('s').trim();
+                        if t.eq_ignore_ascii_case("none") {
+                            Some(0.0)
+                        } else {
+                            t.parse::<f64>().ok()
+                        }
+                    }),
+            )
+            .on_hover_text(
+                "Refinement time budget: after this long the refinement stops (each model \
+                 keeps its best point so far) and the list is ranked; applies to the running \
+                 refinement too. none: every model gets its full refinement (the same result \
+                 on every machine)",
+            );
+        self.record("suggest.budget", &r);
+        if r.changed() {
+            host(
+                "setRefineBudget",
+                &[JsValue::from_f64(self.refine_budget_s as f64)],
+            );
+        }
+    }
+
     fn apply_commands(&mut self, ctx: &egui::Context) {
         let cmds: Vec<Command> = COMMANDS.with(|c| std::mem::take(&mut *c.borrow_mut()));
         for cmd in cmds {
@@ -762,8 +823,9 @@ impl ProctexApp {
                     rows,
                     thumbnails,
                     cancelled,
+                    timed_out,
                     best,
-                } => self.suggestions(ctx, rows, thumbnails, cancelled, best),
+                } => self.suggestions(ctx, rows, thumbnails, (cancelled, timed_out), best),
                 Command::Adopted { index, report } => {
                     self.suggest.adopting = None;
                     self.adopt(index, *report);
@@ -947,9 +1009,13 @@ impl ProctexApp {
         egui::CollapsingHeader::new("Presets and morph")
             .default_open(true)
             .show(ui, |ui| self.presets_panel(ui));
-        egui::CollapsingHeader::new("Model suggestions")
-            .default_open(true)
-            .show(ui, |ui| self.suggestions_panel(ui));
+        egui::collapsing_header::CollapsingState::load_with_default_open(
+            ui.ctx(),
+            ui.make_persistent_id("model_suggestions"),
+            true,
+        )
+        .show_header(ui, |ui| self.refine_budget_control(ui))
+        .body(|ui| self.suggestions_panel(ui));
         egui::CollapsingHeader::new("Plots")
             .default_open(true)
             .show(ui, |ui| self.plots(ui));

@@ -306,13 +306,15 @@ pub fn suggestion_progress(done: u32, total: u32) {
 }
 
 /// The ranked suggestions (rows JSON), their thumbnails (`THUMB_SIDE²` RGBA8 each,
-/// concatenated), whether the refinement was cancelled, and the best candidate's report JSON
+/// concatenated), whether the refinement was cancelled and whether by its time budget
+/// (`setRefineBudget`), and the best candidate's report JSON
 /// when it is a structured model (adopted unless the user edited the params meanwhile).
 #[wasm_bindgen(js_name = suggestionsDone)]
 pub fn suggestions_done(
     rows_json: String,
     thumbnails: Vec<u8>,
     cancelled: bool,
+    timed_out: bool,
     best_report: Option<String>,
 ) -> Result<(), JsValue> {
     let rows: Vec<jobs::SuggestionRow> = serde_json::from_str(&rows_json).map_err(js_error)?;
@@ -332,6 +334,7 @@ pub fn suggestions_done(
         rows,
         thumbnails,
         cancelled,
+        timed_out,
         best,
     });
     Ok(())

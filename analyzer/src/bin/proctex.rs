@@ -7,11 +7,11 @@ use std::time::Instant;
 
 use proctex::analyze::Options;
 use proctex::db::Db;
-use proctex::evaluate::{distances, fidelity, ratio_difference, synthesize_model};
+use proctex::evaluate::{distances, fidelity, ratio_difference, synthesize_model_progress};
 use proctex::input::{Crop, Photo};
 use proctex::params::Params;
 use proctex::render::{Image, View, period_texels, render};
-use proctex::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model};
+use proctex::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model_progress};
 use proctex::spectrum::Estimator;
 use proctex::{Error, Result};
 
@@ -57,7 +57,10 @@ OPTIONS:
                             wood_lines, rings (retrieved, refined, then fitted)
     --refine N              Nelder–Mead evaluations per family after retrieval, shared by
                             its two best database entries as starts (default 80; 0:
-                            retrieval alone)";
+                            retrieval alone)
+    --refine-seconds S      a time budget for the refinement as well: it stops after S
+                            seconds (each family keeps its best point so far) and says so;
+                            the result then depends on the machine's speed (none by default)";
 
 const RENDER_HELP: &str = "\
 proctex render PARAMS.json -o OUT.png [OPTIONS]
@@ -455,10 +458,67 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
     ranking
 }
 
+/// The refinement's time budget (`--refine-seconds`): a progress callback that stops the
+/// refinement once the budget is spent, and what it saw.
+struct TimeBudget {
+    /// When the refinement began (its first evaluation's report; retrieval and fitting are
+    /// not counted).
+    start: std::sync::OnceLock<Instant>,
+    limit: Option<f64>,
+    stopped_at: std::sync::Mutex<Option<(usize, usize)>>,
+}
+
+impl TimeBudget {
+    fn new(limit: Option<f64>) -> TimeBudget {
+        TimeBudget {
+            start: std::sync::OnceLock::new(),
+            limit,
+            stopped_at: std::sync::Mutex::new(None),
+        }
+    }
+
+    /// The progress callback: `false` (stop) once the budget is spent.
+    fn progress(&self, done: usize, total: usize) -> bool {
+        let Some(limit) = self.limit else {
+            return true;
+        };
+        if self.start.get_or_init(Instant::now).elapsed().as_secs_f64() < limit {
+            return true;
+        }
+        if let Ok(mut s) = self.stopped_at.lock() {
+            s.get_or_insert((done, total));
+        }
+        false
+    }
+
+    /// A line saying where the budget stopped the refinement, if it did.
+    fn report(&self) -> Option<String> {
+        let (done, total) = (*self.stopped_at.lock().ok()?)?;
+        Some(format!(
+            "refinement: time budget of {} s spent after {done} of {total} evaluations (each \
+             family kept its best point so far)",
+            self.limit.unwrap_or(0.0)
+        ))
+    }
+}
+
+/// Parses `--refine-seconds S` (S > 0, finite).
+fn refine_seconds(a: &mut Args, flag: &str) -> Result<Option<f64>> {
+    let v: f64 = a.parsed(flag)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(Some(v))
+    } else {
+        Err(usage(format!(
+            "{flag}: must be a positive number of seconds, got {v}"
+        )))
+    }
+}
+
 fn cmd_analyze(mut a: Args) -> Result<()> {
     let mut o = Options::default();
     let mut model = ModelChoice::Auto;
     let mut refinement = Refinement::default();
+    let mut seconds = None;
     let (mut photo, mut out, mut json) = (None, None, false);
     while let Some(arg) = a.next() {
         match arg.as_str() {
@@ -470,6 +530,7 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
             "--json" => json = true,
             "--model" => model = model_choice(&mut a, &arg)?,
             "--refine" => refinement = refinement_of(a.parsed(&arg)?),
+            "--refine-seconds" => seconds = refine_seconds(&mut a, &arg)?,
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("analyze: unknown option {f}"))),
             _ if photo.is_none() => photo = Some(arg),
@@ -480,10 +541,13 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
     let bytes = read(&photo)?;
     let t = Instant::now();
     let photo = Photo::decode(&bytes)?;
-    let (analysis, suggestions) = analyze_photo_model(&photo, &o, model, refinement)?;
+    let budget = TimeBudget::new(seconds);
+    let (analysis, suggestions) =
+        analyze_photo_model_progress(&photo, &o, model, refinement, &|d, n| budget.progress(d, n))?;
     let ms = t.elapsed().as_secs_f64() * 1e3;
     let text = analysis.params.to_json();
-    let ranking = ranking_text(&suggestions);
+    let ranking =
+        ranking_text(&suggestions) + &budget.report().map(|r| r + "\n").unwrap_or_default();
     let chosen = format!("model: {}\n", analysis.params.model.name());
     if let Some(path) = &out {
         std::fs::write(path, &text).map_err(|e| Error::Io {
@@ -620,6 +684,7 @@ fn cmd_synth(mut a: Args) -> Result<()> {
     let mut o = Options::default();
     let mut model = ModelChoice::Auto;
     let mut refinement = Refinement::default();
+    let mut seconds = None;
     let (mut photo, mut out) = (None, None);
     while let Some(arg) = a.next() {
         match arg.as_str() {
@@ -630,6 +695,7 @@ fn cmd_synth(mut a: Args) -> Result<()> {
             "-o" | "--output" => out = Some(a.value(&arg)?),
             "--model" => model = model_choice(&mut a, &arg)?,
             "--refine" => refinement = refinement_of(a.parsed(&arg)?),
+            "--refine-seconds" => seconds = refine_seconds(&mut a, &arg)?,
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("synth: unknown option {f}"))),
             _ if photo.is_none() => photo = Some(arg),
@@ -644,8 +710,15 @@ fn cmd_synth(mut a: Args) -> Result<()> {
         None => decoded,
     };
     let o = Options { crop: None, ..o };
-    let (syn, analysis, suggestions) = synthesize_model(&region, &o, model, refinement)?;
+    let budget = TimeBudget::new(seconds);
+    let (syn, analysis, suggestions) =
+        synthesize_model_progress(&region, &o, model, refinement, &|d, n| {
+            budget.progress(d, n)
+        })?;
     print!("{}", ranking_text(&suggestions));
+    if let Some(r) = budget.report() {
+        println!("{r}");
+    }
     println!("model: {}", analysis.params.model.name());
     let img = Image {
         width: syn.width,
