@@ -431,9 +431,8 @@ window.proctex = {
   lastTimings: () => lastTimings,
   // The last ranked suggestions: rows (name, score, distance, retrieval, refined), the
   // milliseconds from retrieval to ranking, whether Cancel (or the time budget: `timedOut`)
-  // cut the refinement, how many
-  // families the helper workers refined (`helped`, of `helpers` helpers), and how many
-  // rankings the page has received (`count`).
+  // cut the refinement, how many families the helper workers refined (`helped`, of `helpers`
+  // helpers), and how many rankings the page has received (`count`).
   lastSuggestions: () => lastSuggestions,
   // e2e/bench: at most `n` helper workers refine families for the next suggestions (default:
   // the cores beyond the worker's and the page's, at most 3), to time refinement with and

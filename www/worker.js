@@ -83,14 +83,19 @@ function armBudget(s) {
   s.budgetTimer = undefined;
   if (refineBudgetMs <= 0 || s.finished || s.cancelled) return;
   s.budgetTimer = setTimeout(() => {
-    if (suggestion !== s || s.finished || s.cancelled) return;
-    s.timedOut = true;
-    s.cancelled = true;
-    if (s.waiting) {
-      s.waiting = false;
-      scheduleStep(s);
-    }
+    if (suggestion === s && !s.finished && !s.cancelled) stopRefinement(s, true);
   }, Math.max(0, s.t0 + refineBudgetMs - performance.now()));
+}
+
+// Stops the refinement of `s` before its next step (Cancel, or the time budget when
+// `timedOut`); if only helpers were refining, ranks now, without their families.
+function stopRefinement(s, timedOut) {
+  s.cancelled = true;
+  s.timedOut = timedOut;
+  if (s.waiting) {
+    s.waiting = false;
+    scheduleStep(s);
+  }
 }
 
 // ---- Helper workers: as many as the machine has cores beyond this worker's and the page's
@@ -343,14 +348,7 @@ onmessage = (e) => {
   }
   if (m.type === 'cancelSuggest') {
     // Not queued: the running refinement sees it before its next step.
-    if (suggestion) {
-      suggestion.cancelled = true;
-      if (suggestion.waiting) {
-        // Only helpers were refining: rank now, without their families.
-        suggestion.waiting = false;
-        scheduleStep(suggestion);
-      }
-    }
+    if (suggestion && !suggestion.cancelled) stopRefinement(suggestion, false);
     return;
   }
   queue = queue.then(() => handle(m)).catch((err) => {
