@@ -252,6 +252,20 @@ impl Db {
     /// distance cannot enter the family's list any more. The distance stored in a [`Match`] is
     /// [`Db::pattern_distance`] of the turned descriptor.
     pub fn top_per_kind(&self, query: &Descriptor, k: usize) -> Vec<Vec<Match>> {
+        self.top_per_kind_paired(query, k, None)
+    }
+
+    /// [`Db::top_per_kind`] for a query whose bright half is its connected network
+    /// (`Some(true)`), its dark half (`Some(false)`) or neither clearly (`None`; see
+    /// [`crate::two_tone::network_phase`]): a family with a network of its own
+    /// ([`PatternKind::network`]) is then paired network to network, whatever the quantiles
+    /// say; the others keep the tone orientation whose quantiles are nearer.
+    pub fn top_per_kind_paired(
+        &self,
+        query: &Descriptor,
+        k: usize,
+        network: Option<bool>,
+    ) -> Vec<Vec<Match>> {
         const BLOCK: usize = ORIENTATIONS * FREQUENCIES;
         let q = &query.0;
         let qs = query.swapped();
@@ -273,8 +287,11 @@ impl Db {
                     .sum()
             };
             let (q_plain, q_swap) = (quant(q), quant(&qs.0));
-            let swapped = q_swap < q_plain;
-            let q_part = q_plain.min(q_swap);
+            let swapped = match (network, e.pattern.kind.network()) {
+                (Some(photo), Some(own)) => photo != own,
+                _ => q_swap < q_plain,
+            };
+            let q_part = if swapped { q_swap } else { q_plain };
             if q_part >= bound {
                 continue;
             }

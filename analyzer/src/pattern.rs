@@ -173,6 +173,23 @@ impl PatternKind {
         PatternKind::Rings,
     ];
 
+    /// Which half of the family's structure values is its connected network, where it has
+    /// one: `Some(false)` for the joints (s ≈ 0) around the pieces of grid, brick, cells and
+    /// planks and the dark cracks between turbulence's blobs, `Some(true)` for ridged's bright
+    /// crests; `None` for perlin's blobs, wood lines and rings. Retrieval pairs a photo whose
+    /// network is clear ([`crate::two_tone::network_phase`]) network to network.
+    pub fn network(self) -> Option<bool> {
+        match self {
+            PatternKind::Grid
+            | PatternKind::Brick
+            | PatternKind::Cells
+            | PatternKind::Planks
+            | PatternKind::Turbulence => Some(false),
+            PatternKind::Ridged => Some(true),
+            PatternKind::Perlin | PatternKind::WoodLines | PatternKind::Rings => None,
+        }
+    }
+
     /// The JSON / CLI name.
     pub fn name(self) -> &'static str {
         match self {

@@ -24,7 +24,7 @@ use crate::pattern::{Pattern, PatternKind};
 use crate::refine::refine;
 use crate::render::{Prepared, View, render_prepared};
 use crate::structure::{fit_structured, fit_structured_with};
-use crate::two_tone::{TwoTone, two_tone};
+use crate::two_tone::{TwoTone, network_phase, two_tone};
 
 /// A structured candidate ranks above the noise model only when its texture distance is lower
 /// by more than this fraction of the distance between two patches of the photo itself (its top
@@ -222,10 +222,12 @@ impl Suggester {
         let small = photo.reduced(RANK_SIZE).unwrap_or_else(|| photo.clone());
         let texels_per_small = photo.width as f32 / small.width as f32;
         let tt = two_tone(&small);
-        let (q, per_px) = query(&tt.structure, small.width as usize, small.height as usize);
+        let (w, h) = (small.width as usize, small.height as usize);
+        let (q, per_px) = query(&tt.structure, w, h);
+        let network = network_phase(&tt.structure, w, h);
         let want = refinement.starts.max(1);
         let mut starts: Vec<Vec<Match>> = db
-            .top_per_kind(&q, want * DIVERSE_POOL)
+            .top_per_kind_paired(&q, want * DIVERSE_POOL, network)
             .into_iter()
             .filter(|v| !v.is_empty())
             .map(|pool| diverse_starts(pool, want))

@@ -150,6 +150,82 @@ impl TwoTone {
     }
 }
 
+/// Which phase of a structure map is a connected network and which isolated pieces, when
+/// that is clear: `Some(true)` when the bright half (above the median) is the network (bright
+/// mortar or rims around dark pieces), `Some(false)` when the dark half is, `None` when
+/// neither or both are (blobs, lines, noise).
+///
+/// Departure from the two-tone paper, which pairs a photo's tones with a pattern's by the
+/// descriptor alone: the Gabor magnitudes of `s` and `1 − s` are equal, so the pairing rests on
+/// the five quantiles, and those say little about which phase is the pieces (on a reptile skin
+/// they laid a pattern's pieces on the photo's bright rims, the photo's network). Connectivity
+/// says which phase is which directly: the network's largest 4-connected component holds nearly
+/// all of its half (≥ 0.8), a pieces half is split into many (its largest ≤ 0.2). Measured on
+/// the synthetic round trip's 72 queries: decisive for every grid, brick and cells query, 5 of
+/// 8 planks (the others hold long planks whose gaps hardly connect), 4 of 8 turbulence and
+/// ridged, and always the right way round; never for perlin, wood lines or rings. Pairing by it
+/// ([`crate::db::Db::top_per_kind_paired`]) took the round trip from 65 to 66 of 72 (refined
+/// structure distance alone 65 → 67).
+pub fn network_phase(map: &[f32], w: usize, h: usize) -> Option<bool> {
+    if map.len() != w * h || map.is_empty() {
+        return None;
+    }
+    let mut sorted = map.to_vec();
+    sorted.sort_by(f32::total_cmp);
+    let median = sorted[sorted.len() / 2];
+    let bright: Vec<bool> = map.iter().map(|&v| v > median).collect();
+    // A map whose values pile up at the median (a clipped or two-valued one) has no halves to
+    // compare: its "bright half" may be empty.
+    let share = bright.iter().filter(|&&b| b).count() as f32 / bright.len() as f32;
+    if !(0.3..=0.7).contains(&share) {
+        return None;
+    }
+    let largest = |phase: bool| -> f32 {
+        let mut seen = vec![false; w * h];
+        let (mut best, mut total) = (0usize, 0usize);
+        let mut stack = Vec::new();
+        for start in 0..w * h {
+            if bright[start] != phase || seen[start] {
+                continue;
+            }
+            seen[start] = true;
+            stack.push(start);
+            let mut n = 0;
+            while let Some(j) = stack.pop() {
+                n += 1;
+                let (x, y) = (j % w, j / w);
+                let near = [
+                    (x > 0).then(|| j - 1),
+                    (x + 1 < w).then(|| j + 1),
+                    (y > 0).then(|| j - w),
+                    (y + 1 < h).then(|| j + w),
+                ];
+                for k in near.into_iter().flatten() {
+                    if bright[k] == phase && !seen[k] {
+                        seen[k] = true;
+                        stack.push(k);
+                    }
+                }
+            }
+            best = best.max(n);
+            total += n;
+        }
+        if total == 0 {
+            0.0
+        } else {
+            best as f32 / total as f32
+        }
+    };
+    let (hi, lo) = (largest(true), largest(false));
+    if hi >= 0.8 && lo <= 0.2 {
+        Some(true)
+    } else if lo >= 0.8 && hi <= 0.2 {
+        Some(false)
+    } else {
+        None
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -172,6 +248,30 @@ mod tests {
         } else {
             x
         }
+    }
+
+    #[test]
+    fn network_phase_finds_the_joints() {
+        // Dark square pieces (0.2) in a bright joint network (0.9): 8-texel tiles, 2-texel joints.
+        let (w, h) = (64usize, 48usize);
+        let map: Vec<f32> = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                if x % 8 < 2 || y % 8 < 2 {
+                    0.9
+                } else {
+                    0.2 + 0.001 * (i % 7) as f32
+                }
+            })
+            .collect();
+        assert_eq!(network_phase(&map, w, h), Some(true));
+        let swapped: Vec<f32> = map.iter().map(|v| 1.0 - v).collect();
+        assert_eq!(network_phase(&swapped, w, h), Some(false));
+        // Stripes: neither half is pieces (and this two-valued map has no half above its median).
+        let stripes: Vec<f32> = (0..w * h).map(|i| ((i % w) / 4 % 2) as f32).collect();
+        assert_eq!(network_phase(&stripes, w, h), None);
+        assert_eq!(network_phase(&[], 0, 0), None);
+        assert_eq!(network_phase(&[0.5; 6], 3, 2), None);
     }
 
     #[test]
