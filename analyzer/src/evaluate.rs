@@ -246,7 +246,7 @@ pub fn random_phase(photo: &Photo, seed: u32) -> Photo {
 }
 
 /// Result of the fidelity protocol on one photo.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Fidelity {
     /// Distance between the two halves of the photo.
     pub halves: Distances,
@@ -270,18 +270,22 @@ pub struct Fidelity {
     /// The mean distance of the syntheses from each of the four source patches (top-left,
     /// bottom-left, top-right, bottom-right) to the other patch of its pair: what
     /// [`ratio_difference`] pairs.
-    pub per_patch: [Distances; 4],
+    pub per_patch: Vec<Distances>,
+    /// Whether the photo's quadrants repeat ([`quadrants_repeat`]): then top-left and
+    /// bottom-right are one patch, bottom-left and top-right another.
+    pub repeat: bool,
 }
 
 /// The difference of two models' fidelity ratios on one photo (`a` − `b`, both measured with
 /// the same seeds), and its standard error: the per-patch differences of mean distance over
-/// `halves`, averaged over the four source patches, the error their spread over `√4`. The
+/// `halves`, averaged over the distinct source patches, the error their spread over `√n`:
+/// four patches, or two where the quadrants repeat (each the mean of its two copies). The
 /// patches, not the syntheses, are the independent samples: the syntheses from one patch
 /// share its pixels, and the seeds only vary the render (a model that fits one patch's
 /// peculiarities is as wrong with every seed). Four samples make a rough error, but an honest
 /// one: a difference within it is not evidence that either model is better on that photo.
 pub fn ratio_difference(a: &Fidelity, b: &Fidelity) -> (Distances, Distances) {
-    let diffs: Vec<Distances> = a
+    let mut diffs: Vec<Distances> = a
         .per_patch
         .iter()
         .zip(&b.per_patch)
@@ -290,6 +294,11 @@ pub fn ratio_difference(a: &Fidelity, b: &Fidelity) -> (Distances, Distances) {
                 .zip(a.halves, |d, h| d / h.max(1e-9))
         })
         .collect();
+    if a.repeat && diffs.len() == 4 {
+        // Top-left with bottom-right, bottom-left with top-right: one patch each.
+        let mean2 = |i: usize, j: usize| diffs[i].zip(diffs[j], |x, y| (x + y) / 2.0);
+        diffs = vec![mean2(0, 3), mean2(1, 2)];
+    }
     let n = diffs.len() as f64;
     let mean = diffs
         .iter()
@@ -340,12 +349,56 @@ pub fn synthesize_model_progress(
     Ok((img.to_photo(), a, suggestions))
 }
 
+/// The photo's quadrants, each half its size: top-left, top-right, bottom-left, bottom-right.
+fn quadrants(photo: &Photo) -> Result<[Photo; 4]> {
+    let (hw, hh) = (photo.width / 2, photo.height / 2);
+    let quad = |x: u32, y: u32| photo.crop(Crop { x, y, w: hw, h: hh });
+    let (right, bottom) = (photo.width - hw, photo.height - hh);
+    Ok([
+        quad(0, 0)?,
+        quad(right, 0)?,
+        quad(0, bottom)?,
+        quad(right, bottom)?,
+    ])
+}
+
+/// Mean absolute difference per colour value (0–1) below which [`quadrants_repeat`] counts
+/// two quadrants as one patch (copies on the samples: 0.0003; distinct patches of one
+/// material: 0.07 and more).
+pub const REPEAT_TOLERANCE: f64 = 0.01;
+
+/// Whether the photo's top-right quadrant repeats its bottom-left and its bottom-right its
+/// top-left (within [`REPEAT_TOLERANCE`]), as in several game textures that are a tile laid
+/// 2×2 with an offset: then the fidelity protocol's second pair (top-right, bottom-right) is
+/// its first (top-left, bottom-left) with the roles swapped, its syntheses the same (the
+/// analysis sees nearly the same pixels), and only two of the four source patches are
+/// distinct. The copies' syntheses still differ (a difference of 0.0003 can tip the refinement
+/// to another family), so the protocol keeps all four and averages each patch's two copies.
+/// Measured (2026-11-25): black rock, hacienda, mountain rock and rock wall (256² and 512²)
+/// repeat (0.0003); old wood's copies differ by 0.015 and count as distinct (its two pairs
+/// are 2.35 and 1.67 dB apart in spectrum, not alike); the other samples differ by 0.07–0.1.
+pub fn quadrants_repeat(photo: &Photo) -> Result<bool> {
+    let [tl, tr, bl, br] = quadrants(photo)?;
+    let mad = |a: &Photo, b: &Photo| {
+        let sum: f64 = a
+            .pixels
+            .iter()
+            .zip(&b.pixels)
+            .map(|(p, q)| (0..3).map(|c| (p[c] - q[c]).abs() as f64).sum::<f64>())
+            .sum();
+        sum / (3 * a.pixels.len().max(1)) as f64
+    };
+    Ok(mad(&tr, &bl) < REPEAT_TOLERANCE && mad(&br, &tl) < REPEAT_TOLERANCE)
+}
+
 /// The fidelity protocol: quadrants top-left/bottom-left and top-right/bottom-right of the
 /// photo are pairs (A, B) of different patches of one material; synthesise from A (at A's pixel
 /// size) and compare with B, and from B against A, for each seed; divide the mean distance by
 /// the mean `d(A, B)`. (Quadrants stacked vertically, not the left and right halves: several
 /// game textures are 2×2 tilings with a half-tile offset whose right half is the left half
-/// shifted, which would make `d(A, B)` zero.)
+/// shifted, which would make `d(A, B)` zero.) Where the quadrants repeat
+/// ([`quadrants_repeat`]), the second pair is the first swapped: [`ratio_difference`] then
+/// counts two independent patches, not four.
 pub fn fidelity(
     photo: &Photo,
     opts: &Options,
@@ -353,19 +406,13 @@ pub fn fidelity(
     refinement: Refinement,
     seeds: &[u32],
 ) -> Result<Fidelity> {
-    let (hw, hh) = (photo.width / 2, photo.height / 2);
-    let quad = |x: u32, y: u32| photo.crop(Crop { x, y, w: hw, h: hh });
-    let pairs = [
-        (quad(0, 0)?, quad(0, photo.height - hh)?),
-        (
-            quad(photo.width - hw, 0)?,
-            quad(photo.width - hw, photo.height - hh)?,
-        ),
-    ];
+    let [tl, tr, bl, br] = quadrants(photo)?;
+    let repeat = quadrants_repeat(photo)?;
+    let pairs = [(tl, bl), (tr, br)];
     let (mut halves, mut synthesis, mut floor) =
         (Distances::ZERO, Distances::ZERO, Distances::ZERO);
     let mut n = 0.0;
-    let mut per_patch = [Distances::ZERO; 4];
+    let mut per_patch = vec![Distances::ZERO; 4];
     for (pi, (a, b)) in pairs.iter().enumerate() {
         let d = distances(a, b);
         halves = halves.zip(d, |x, y| x + y / pairs.len() as f64);
@@ -397,6 +444,7 @@ pub fn fidelity(
         floor_colour_ratio: fr.colour,
         floor_structure_ratio: fr.structure,
         per_patch,
+        repeat,
     })
 }
 
@@ -404,7 +452,7 @@ pub fn fidelity(
 mod tests {
     use super::*;
 
-    fn fidelity_with(halves: f64, per_patch: [f64; 4]) -> Fidelity {
+    fn fidelity_with(halves: f64, per_patch: &[f64]) -> Fidelity {
         let d = |v: f64| Distances {
             spectrum_db: v,
             colour: v / 100.0,
@@ -412,7 +460,7 @@ mod tests {
         };
         Fidelity {
             halves: d(halves),
-            synthesis: d(per_patch.iter().sum::<f64>() / 4.0),
+            synthesis: d(per_patch.iter().sum::<f64>() / per_patch.len() as f64),
             spectrum_ratio: 0.0,
             colour_ratio: 0.0,
             structure_ratio: 0.0,
@@ -420,14 +468,15 @@ mod tests {
             floor_spectrum_ratio: 0.0,
             floor_colour_ratio: 0.0,
             floor_structure_ratio: 0.0,
-            per_patch: per_patch.map(d),
+            per_patch: per_patch.iter().map(|&v| d(v)).collect(),
+            repeat: false,
         }
     }
 
     #[test]
     fn ratio_difference_is_the_mean_over_patches_with_its_standard_error() {
-        let a = fidelity_with(2.0, [3.0, 4.0, 5.0, 6.0]);
-        let b = fidelity_with(2.0, [2.0; 4]);
+        let a = fidelity_with(2.0, &[3.0, 4.0, 5.0, 6.0]);
+        let b = fidelity_with(2.0, &[2.0; 4]);
         let (mean, se) = ratio_difference(&a, &b);
         // Per patch (a − b) / halves: 0.5, 1, 1.5, 2 (in every distance, each in its own units).
         let want_se = ((0.75f64.powi(2) + 0.25f64.powi(2)) * 2.0 / 3.0 / 4.0).sqrt();
@@ -442,5 +491,73 @@ mod tests {
         // The mean is the difference of the two ratios the table prints.
         let (r, _) = ratio_difference(&a, &a);
         assert_eq!((r.spectrum_db, r.colour, r.structure), (0.0, 0.0, 0.0));
+    }
+
+    /// A `2w × 2h` photo whose quadrants are `tl`, `tr`, `bl`, `br`.
+    fn laid(q: [&Photo; 4]) -> Photo {
+        let (w, h) = (q[0].width, q[0].height);
+        let mut pixels = Vec::with_capacity((4 * w * h) as usize);
+        for y in 0..2 * h {
+            for x in 0..2 * w {
+                let k = (2 * (y / h) + x / w) as usize;
+                pixels.push(q[k].get(x % w, y % h));
+            }
+        }
+        Photo {
+            width: 2 * w,
+            height: 2 * h,
+            pixels,
+        }
+    }
+
+    fn random_patch(seed: u32, w: u32, h: u32) -> Photo {
+        Photo {
+            width: w,
+            height: h,
+            pixels: (0..w * h)
+                .map(|i| {
+                    let v = rng::uniform(seed, 0, i) as f32;
+                    [v, 0.5 * v, 1.0 - v]
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn quadrants_repeat_only_where_the_second_pair_is_the_first_swapped() {
+        let (a, b, c, d) = (
+            random_patch(1, 24, 16),
+            random_patch(2, 24, 16),
+            random_patch(3, 24, 16),
+            random_patch(4, 24, 16),
+        );
+        // A tile laid 2×2 with an offset: top-right = bottom-left, bottom-right = top-left.
+        assert!(quadrants_repeat(&laid([&a, &b, &b, &a])).unwrap());
+        // JPEG-like noise between the copies still repeats.
+        let mut b2 = b.clone();
+        for p in &mut b2.pixels {
+            p[0] = (p[0] + 0.003).min(1.0);
+        }
+        assert!(quadrants_repeat(&laid([&a, &b2, &b, &a])).unwrap());
+        // Four different patches, or only one of the two copies: not a repeat.
+        assert!(!quadrants_repeat(&laid([&a, &b, &c, &d])).unwrap());
+        assert!(!quadrants_repeat(&laid([&a, &b, &b, &c])).unwrap());
+        assert!(!quadrants_repeat(&laid([&a, &a, &a, &b])).unwrap());
+    }
+
+    #[test]
+    fn ratio_difference_over_two_patches_counts_two_samples() {
+        // A repeating photo: top-left = bottom-right (3, 3.2), bottom-left = top-right (4, 3.8).
+        // Per patch (a − b) / halves: 0.55 and 0.95, the error |0.95 − 0.55| / 2. Counted as
+        // four samples (0.5, 1, 0.9, 0.6) it would read about √3 too small.
+        let mut a = fidelity_with(2.0, &[3.0, 4.0, 3.8, 3.2]);
+        let b = fidelity_with(2.0, &[2.0; 4]);
+        let four = ratio_difference(&a, &b);
+        a.repeat = true;
+        let (mean, se) = ratio_difference(&a, &b);
+        assert!((mean.spectrum_db - 0.75).abs() < 1e-12);
+        assert!((four.0.spectrum_db - 0.75).abs() < 1e-12);
+        assert!((se.spectrum_db - 0.2).abs() < 1e-12, "{}", se.spectrum_db);
+        assert!(four.1.spectrum_db < 0.7 * se.spectrum_db, "{:?}", four.1);
     }
 }

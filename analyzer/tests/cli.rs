@@ -228,8 +228,11 @@ fn fidelity_against_another_model_prints_the_paired_difference() {
         assert_eq!(v["against"]["standard_error"][k], 0.0, "{k}");
     }
     assert_eq!(v["result"]["per_patch"].as_array().unwrap().len(), 4);
+    // Black rock is a tile laid 2×2 (`evaluate::quadrants_repeat`): two distinct patches.
+    assert_eq!(v["result"]["repeat"], true);
     let text = run("1", false);
     assert!(text.contains("difference +0.00 ± 0.00"), "{text}");
+    assert!(text.contains("the quadrants repeat"), "{text}");
 }
 
 #[test]

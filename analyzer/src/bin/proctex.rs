@@ -109,8 +109,9 @@ other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and 
 the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
 can do). --model as for `analyze`, but noise by default (the README's noise-only table).
 --against M2 also runs M2 with the same seeds and prints the difference of the ratios (M − M2;
-negative: M is nearer) with its standard error over the four source patches, the independent
-samples (a difference within about twice it is not evidence either way).";
+negative: M is nearer) with its standard error over the distinct source patches, the
+independent samples (a difference within about twice it is not evidence either way): four, or
+two where the quadrants repeat (a tile laid 2×2, each patch twice; the text output says so).";
 
 const MORPH_HELP: &str = "\
 proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
@@ -820,7 +821,8 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
         let diff = match against {
             Some(m) => {
                 let other = fidelity(&photo, &o, m, refinement, &seeds)?;
-                Some((other, ratio_difference(&r, &other)))
+                let diff = ratio_difference(&r, &other);
+                Some((other, diff))
             }
             None => None,
         };
@@ -855,6 +857,11 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
                 r.structure_ratio,
                 r.floor_structure_ratio
             );
+            if r.repeat {
+                println!(
+                    "  the quadrants repeat (a tile laid 2×2): two distinct source patches, each the mean of its two copies"
+                );
+            }
             if let Some((other, (mean, se))) = &diff {
                 println!(
                     "  against it: ratios {:.2} / {:.2} / {:.2}; difference {:+.2} ± {:.2} / {:+.2} ± {:.2} / {:+.2} ± {:.2} (spectrum / colour / structure)",
