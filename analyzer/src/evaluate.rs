@@ -246,7 +246,7 @@ pub fn random_phase(photo: &Photo, seed: u32) -> Photo {
 }
 
 /// Result of the fidelity protocol on one photo.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Fidelity {
     /// Distance between the two halves of the photo.
     pub halves: Distances,
@@ -270,7 +270,7 @@ pub struct Fidelity {
     /// The mean distance of the syntheses from each of the four source patches (top-left,
     /// bottom-left, top-right, bottom-right) to the other patch of its pair: what
     /// [`ratio_difference`] pairs.
-    pub per_patch: Vec<Distances>,
+    pub per_patch: [Distances; 4],
     /// Whether the photo's quadrants repeat ([`quadrants_repeat`]): then top-left and
     /// bottom-right are one patch, bottom-left and top-right another.
     pub repeat: bool,
@@ -294,7 +294,7 @@ pub fn ratio_difference(a: &Fidelity, b: &Fidelity) -> (Distances, Distances) {
                 .zip(a.halves, |d, h| d / h.max(1e-9))
         })
         .collect();
-    if a.repeat && diffs.len() == 4 {
+    if a.repeat {
         // Top-left with bottom-right, bottom-left with top-right: one patch each.
         let mean2 = |i: usize, j: usize| diffs[i].zip(diffs[j], |x, y| (x + y) / 2.0);
         diffs = vec![mean2(0, 3), mean2(1, 2)];
@@ -412,7 +412,7 @@ pub fn fidelity(
     let (mut halves, mut synthesis, mut floor) =
         (Distances::ZERO, Distances::ZERO, Distances::ZERO);
     let mut n = 0.0;
-    let mut per_patch = vec![Distances::ZERO; 4];
+    let mut per_patch = [Distances::ZERO; 4];
     for (pi, (a, b)) in pairs.iter().enumerate() {
         let d = distances(a, b);
         halves = halves.zip(d, |x, y| x + y / pairs.len() as f64);
@@ -452,7 +452,7 @@ pub fn fidelity(
 mod tests {
     use super::*;
 
-    fn fidelity_with(halves: f64, per_patch: &[f64]) -> Fidelity {
+    fn fidelity_with(halves: f64, per_patch: [f64; 4]) -> Fidelity {
         let d = |v: f64| Distances {
             spectrum_db: v,
             colour: v / 100.0,
@@ -460,7 +460,7 @@ mod tests {
         };
         Fidelity {
             halves: d(halves),
-            synthesis: d(per_patch.iter().sum::<f64>() / per_patch.len() as f64),
+            synthesis: d(per_patch.iter().sum::<f64>() / 4.0),
             spectrum_ratio: 0.0,
             colour_ratio: 0.0,
             structure_ratio: 0.0,
@@ -468,15 +468,15 @@ mod tests {
             floor_spectrum_ratio: 0.0,
             floor_colour_ratio: 0.0,
             floor_structure_ratio: 0.0,
-            per_patch: per_patch.iter().map(|&v| d(v)).collect(),
+            per_patch: per_patch.map(d),
             repeat: false,
         }
     }
 
     #[test]
     fn ratio_difference_is_the_mean_over_patches_with_its_standard_error() {
-        let a = fidelity_with(2.0, &[3.0, 4.0, 5.0, 6.0]);
-        let b = fidelity_with(2.0, &[2.0; 4]);
+        let a = fidelity_with(2.0, [3.0, 4.0, 5.0, 6.0]);
+        let b = fidelity_with(2.0, [2.0; 4]);
         let (mean, se) = ratio_difference(&a, &b);
         // Per patch (a − b) / halves: 0.5, 1, 1.5, 2 (in every distance, each in its own units).
         let want_se = ((0.75f64.powi(2) + 0.25f64.powi(2)) * 2.0 / 3.0 / 4.0).sqrt();
@@ -550,8 +550,8 @@ mod tests {
         // A repeating photo: top-left = bottom-right (3, 3.2), bottom-left = top-right (4, 3.8).
         // Per patch (a − b) / halves: 0.55 and 0.95, the error |0.95 − 0.55| / 2. Counted as
         // four samples (0.5, 1, 0.9, 0.6) it would read about √3 too small.
-        let mut a = fidelity_with(2.0, &[3.0, 4.0, 3.8, 3.2]);
-        let b = fidelity_with(2.0, &[2.0; 4]);
+        let mut a = fidelity_with(2.0, [3.0, 4.0, 3.8, 3.2]);
+        let b = fidelity_with(2.0, [2.0; 4]);
         let four = ratio_difference(&a, &b);
         a.repeat = true;
         let (mean, se) = ratio_difference(&a, &b);

@@ -821,8 +821,7 @@ fn cmd_fidelity(mut a: Args) -> Result<()> {
         let diff = match against {
             Some(m) => {
                 let other = fidelity(&photo, &o, m, refinement, &seeds)?;
-                let diff = ratio_difference(&r, &other);
-                Some((other, diff))
+                Some((other, ratio_difference(&r, &other)))
             }
             None => None,
         };
