@@ -39,6 +39,25 @@ fn cell_hash_wrapped(ix: i32, iy: i32, k: u32, cells: vec2<i32>) -> f32 {
     return cell_hash(wrap_cell(ix, cells.x), wrap_cell(iy, cells.y), k);
 }
 
+// Lower edge of row k of planks: k + widths·(hash(k) − ½), the hash wrapped at rows (0: not).
+fn plank_edge(k: i32, widths: f32, rows: i32) -> f32 {
+    return f32(k) + widths * (cell_hash_wrapped(0, k, 2u, vec2<i32>(0, rows)) - 0.5);
+}
+
+// The row of planks that y falls in and its edges: (row, lower, upper).
+fn plank_row(y: f32, widths: f32, rows: i32) -> vec3<f32> {
+    let k = i32(floor(y));
+    let lo = plank_edge(k, widths, rows);
+    let hi = plank_edge(k + 1, widths, rows);
+    if (y < lo) {
+        return vec3<f32>(f32(k - 1), plank_edge(k - 1, widths, rows), lo);
+    }
+    if (y >= hi) {
+        return vec3<f32>(f32(k + 1), hi, plank_edge(k + 2, widths, rows));
+    }
+    return vec3<f32>(f32(k), lo, hi);
+}
+
 // Octave k at q; with per.x > 0 (seamless tiles, plane textures) q repeats with period per and
 // the octave's frequency moves to a whole number of coefficients over it.
 fn octave(q: vec3<f32>, k: u32, per: vec2<f32>) -> f32 {
@@ -185,13 +204,15 @@ fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
             let shade = 1.0 - w0.w * cell_hash_wrapped(id.x, id.y, 2u, n);
             return soft_step(0.5 * w0.y, max(w0.z, soft), edge) * shade;
         }
-        // planks: length, gap, bevel, variation, grain
+        // planks: length, gap, bevel, variation, grain, widths
         case 7u: {
             let n = wrap_cells(w0.x, wrap);
-            let iy = floor(q.y);
+            let r = plank_row(q.y, w1.y, n.y);
+            let iy = r.x;
             let x = q.x / w0.x + cell_hash_wrapped(0, i32(iy), 1u, vec2<i32>(0, n.y));
             let ix = floor(x);
-            let d = joint_distance(x - ix, q.y - iy, w0.x);
+            let fx = x - ix;
+            let d = min(min(fx, 1.0 - fx) * w0.x, min(q.y - r.y, r.z - q.y));
             let per = vec2<f32>(wrap.x * 0.125, wrap.y * 4.0);
             let g = octaves(vec3<f32>(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0, per);
             let shade = (1.0 - w0.w * cell_hash_wrapped(i32(ix), i32(iy), 0u, n))

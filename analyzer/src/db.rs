@@ -92,7 +92,7 @@ pub fn sample(kind: PatternKind, i: usize) -> Pattern {
         .specs()
         .iter()
         .enumerate()
-        .map(|(j, s)| s.min + (s.max - s.min) * u(j))
+        .map(|(j, s)| s.searched(u(j)))
         .collect();
     p.set_vector(&values);
     if kind == PatternKind::Rings {

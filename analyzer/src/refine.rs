@@ -42,7 +42,7 @@ pub struct Refined {
 fn to_point(p: &Pattern) -> Vec<f64> {
     let mut x = vec![(p.scale as f64).ln(), p.rotation_deg as f64 / 10.0];
     for (s, v) in p.kind.specs().iter().zip(p.vector()) {
-        x.push(((v - s.min) / (s.max - s.min)) as f64);
+        x.push(s.search_fraction(v) as f64);
     }
     x
 }
@@ -57,7 +57,7 @@ fn from_point(kind_of: &Pattern, x: &[f64]) -> Pattern {
         .specs()
         .iter()
         .zip(&x[2..])
-        .map(|(s, &u)| s.min + (s.max - s.min) * (u as f32).clamp(0.0, 1.0))
+        .map(|(s, &u)| s.searched((u as f32).clamp(0.0, 1.0)))
         .collect();
     p.set_vector(&values);
     p

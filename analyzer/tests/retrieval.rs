@@ -30,7 +30,7 @@ fn case(kind: PatternKind, case: usize) -> (Photo, Pattern) {
         .specs()
         .iter()
         .enumerate()
-        .map(|(j, s)| s.min + (s.max - s.min) * u(j as u32))
+        .map(|(j, s)| s.searched(u(j as u32)))
         .collect();
     let mut p = Pattern::new(kind, 1.0);
     p.set_vector(&values);

@@ -38,6 +38,25 @@ float cell_hash_wrapped(int ix, int iy, uint k, ivec2 cells) {
     return cell_hash(wrap_cell(ix, cells.x), wrap_cell(iy, cells.y), k);
 }
 
+// Lower edge of row k of planks: k + widths·(hash(k) − ½), the hash wrapped at rows (0: not).
+float plank_edge(int k, float widths, int rows) {
+    return float(k) + widths * (cell_hash_wrapped(0, k, 2u, ivec2(0, rows)) - 0.5);
+}
+
+// The row of planks that y falls in and its edges: (row, lower, upper).
+vec3 plank_row(float y, float widths, int rows) {
+    int k = int(floor(y));
+    float lo = plank_edge(k, widths, rows);
+    float hi = plank_edge(k + 1, widths, rows);
+    if (y < lo) {
+        return vec3(float(k - 1), plank_edge(k - 1, widths, rows), lo);
+    }
+    if (y >= hi) {
+        return vec3(float(k + 1), hi, plank_edge(k + 2, widths, rows));
+    }
+    return vec3(float(k), lo, hi);
+}
+
 // Octave k at q; with per.x > 0 (seamless tiles, plane textures) q repeats with period per and
 // the octave's frequency moves to a whole number of coefficients over it.
 float octave(vec3 q, uint k, vec2 per) {
@@ -188,12 +207,14 @@ float pattern_at(vec3 q, float lfp, vec2 wrap) {
         return soft_step(0.5 * w0.y, max(w0.z, soft), edge) * shade;
     }
     case 7u: {
-        // planks: length, gap, bevel, variation, grain
+        // planks: length, gap, bevel, variation, grain, widths
         ivec2 n = wrap_cells(w0.x, wrap);
-        float iy = floor(q.y);
+        vec3 r = plank_row(q.y, w1.y, n.y);
+        float iy = r.x;
         float x = q.x / w0.x + cell_hash_wrapped(0, int(iy), 1u, ivec2(0, n.y));
         float ix = floor(x);
-        float d = joint_distance(x - ix, q.y - iy, w0.x);
+        float fx = x - ix;
+        float d = min(min(fx, 1.0 - fx) * w0.x, min(q.y - r.y, r.z - q.y));
         vec2 per = vec2(wrap.x * 0.125, wrap.y * 4.0);
         float g = octaves(vec3(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0, per);
         float shade = (1.0 - w0.w * cell_hash_wrapped(int(ix), int(iy), 0u, n))
