@@ -20,8 +20,9 @@ test('opens on the sample, already rendered', async ({ page }) => {
   }
 });
 
-test('GPU view equals the CPU reference renderer', async ({ page }) => {
-  await openApp(page);
+// The GPU view of the current params over a fixed view against the CLI's CPU render of the
+// same pixels: the mean and largest absolute difference per channel (of 255).
+async function gpuVsCpu(page) {
   // Fixed view: world origin (37.25, -11.5) at the view's top-left, 1.5 world units per pixel.
   const origin = [37.25, -11.5], unitsPerPoint = 1.5;
   await page.evaluate(([o, u]) => window.proctex.setView(o[0], o[1], u), [origin, unitsPerPoint]);
@@ -44,9 +45,50 @@ test('GPU view equals the CPU reference renderer', async ({ page }) => {
       sum += d; max = Math.max(max, d);
     }
   }
-  const mae = sum / (size * size * 3);
+  return { mae: sum / (size * size * 3), max, size, gpu };
+}
+
+test('GPU view equals the CPU reference renderer', async ({ page }) => {
+  await openApp(page);
+  const { mae, max, size } = await gpuVsCpu(page);
   console.log(`GPU vs CPU over ${size}×${size}: mean |diff| = ${mae.toFixed(4)}/255, max ${max}/255`);
   expect(mae).toBeLessThan(0.5);
+});
+
+test('GPU view equals the CPU reference renderer for every pattern family', async ({ page }) => {
+  const { execFileSync } = require('child_process');
+  const os = require('os');
+  await openApp(page);
+  // The brick sample fitted with the brick family (ramp, residual, tone curve), its pattern
+  // then swapped for each family at its defaults, plus the values at the top of the ranges
+  // that only step 6 of the fit or the sliders reach (ridged's roughness 1, planks' widths).
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'proctex-families-'));
+  execFileSync(path.join(ROOT, 'target', 'release', 'proctex'), ['analyze',
+    path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png'), '--model', 'brick', '--refine', '0',
+    '-o', path.join(dir, 'p.json')]);
+  const fitted = JSON.parse(fs.readFileSync(path.join(dir, 'p.json'), 'utf8'));
+  const cases = [
+    ['perlin', {}], ['turbulence', {}], ['ridged', {}], ['ridged', { roughness: 1.0 }], ['grid', {}],
+    ['brick', {}], ['cells', {}], ['planks', {}], ['planks', { widths: 0.5, length: 6 }],
+    ['wood_lines', {}], ['rings', { centre_x: 2, centre_y: 1.5 }],
+  ];
+  for (const [kind, values] of cases) {
+    const p = JSON.parse(JSON.stringify(fitted));
+    p.model.pattern.kind = kind;
+    p.model.pattern.values = values;
+    p.model.pattern.scale = 24;
+    await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(p));
+    await waitFrames(page, 3);
+    const got = JSON.parse(await page.evaluate(() => window.proctex.getParams())).model.pattern;
+    expect(got.kind).toBe(kind);
+    for (const [k, v] of Object.entries(values)) expect(got.values[k]).toBeCloseTo(v, 5);
+    const { mae, max, size, gpu } = await gpuVsCpu(page);
+    const sd = channelStats(gpu).map((c) => c.sd);
+    console.log(`GPU vs CPU, ${kind} ${JSON.stringify(values)}, ${size}×${size}: mean |diff| = ${mae.toFixed(4)}/255, max ${max}/255; sd ${sd.map((v) => v.toFixed(1)).join(' ')}`);
+    expect(mae).toBeLessThan(0.5);
+    // A pattern, not a flat field (both renderers agreeing on nothing).
+    expect(Math.max(...sd)).toBeGreaterThan(4);
+  }
 });
 
 test('dragging the finest band weight raises and removes high-frequency energy', async ({ page }) => {
