@@ -261,9 +261,11 @@ const ROUGHNESS_STEPS: [f32; 2] = [0.06, 0.12];
 /// more power in the coarse rings than the photo has (hacienda's ridged ramp: +3.9 and +5.5 dB
 /// at 41 and 59 px) and the residual can only add power. A rougher pattern shifts its power
 /// towards the fine octaves; step 6's score (spectrum, colour and structure of the render)
-/// decides whether that pays. Measured on the fidelity protocol (seeds 1–6): hacienda's spectrum
-/// ratio 1.13 → 1.07 (the noise model's 1.09), colour 1.02 → 1.03, structure 1.73 → 1.69;
-/// wood planks' spectrum 1.78 → 1.75. Hacienda's refined fits sit at 0.87–0.9, hence ridged's
+/// decides whether that pays. Measured on the fidelity protocol (seeds 1–6), with all six
+/// amplitude choices tried on each candidate: hacienda's spectrum ratio 1.13 → 1.07 (the noise
+/// model's 1.09), colour 1.02 → 1.03, structure 1.73 → 1.69; wood planks' spectrum 1.78 →
+/// 1.75. Reusing the refined pattern's choice (as here) gave the same ratios within 0.01
+/// (README table) at a third of the extra work. Hacienda's refined fits sit at 0.87–0.9, hence ridged's
 /// range up to 1 ([`crate::pattern::ValueSpec::search_max`]).
 fn roughness_candidates(pattern: &Pattern) -> Vec<Pattern> {
     let mut out = vec![pattern.clone()];
