@@ -264,8 +264,9 @@ const ROUGHNESS_STEPS: [f32; 2] = [0.06, 0.12];
 /// decides whether that pays. Measured on the fidelity protocol (seeds 1–6), with all six
 /// amplitude choices tried on each candidate: hacienda's spectrum ratio 1.13 → 1.07 (the noise
 /// model's 1.09), colour 1.02 → 1.03, structure 1.73 → 1.69; wood planks' spectrum 1.78 →
-/// 1.75. Reusing the refined pattern's choice (as here) gave the same ratios within 0.01
-/// (README table) at a third of the extra work. Hacienda's refined fits sit at 0.87–0.9, hence ridged's
+/// 1.75. Reusing the refined pattern's choice (as here), at a third of the extra work, moved
+/// the spectrum ratios by 0.01 or less on hacienda, planks, old wood, black rock and gravel,
+/// and rock wall's 1.14 → 1.09 (colour 1.20 → 1.26; README table). Hacienda's refined fits sit at 0.87–0.9, hence ridged's
 /// range up to 1 ([`crate::pattern::ValueSpec::search_max`]).
 fn roughness_candidates(pattern: &Pattern) -> Vec<Pattern> {
     let mut out = vec![pattern.clone()];
