@@ -29,7 +29,9 @@
 //! Ridged's roughness is the one value whose range goes past its look's: the database,
 //! refinement and the round trip stop at 0.9 ([`ValueSpec::search_max`]; above, ridged
 //! converges on turbulence), the fit's step 6 may go to 1 where the photo's spectrum asks.
-//! Planks' `widths` (ours, 2026-11-25) lets the rows vary ½–1½ units ([`plank_row`]).
+//! Planks' `widths` (ours, 2026-11-25) lets the rows vary ½–1½ units ([`plank_row`]) where
+//! the database and refinement search (to 0.5), 0–2 units at its range's end (1), which step 6
+//! of the fit may reach ([`crate::structure::fit_structured`]).
 //! Documents written before the ranges were narrowed load with their values clamped
 //! ([`Pattern::clamp_values`]). With these ranges (and two refinement starts) the synthetic
 //! round trip finds the right family in 59 of 72 cases, up from 43 (62 since the noise
@@ -390,13 +392,16 @@ impl PatternKind {
                             0.4,
                             "strength of the grain streaks along each plank",
                         ),
-                        v(
-                            "widths",
-                            0.0,
-                            0.5,
-                            0.0,
-                            "irregularity of the planks' widths (0: all alike; 0.5: ½–1½×)",
-                        ),
+                        ValueSpec {
+                            search_max: 0.5,
+                            ..v(
+                                "widths",
+                                0.0,
+                                1.0,
+                                0.0,
+                                "irregularity of the planks' widths (0: all alike; 0.5: ½–1½×; 1: 0–2×)",
+                            )
+                        },
                     ]
                 }
             }
@@ -571,8 +576,9 @@ pub fn cell_hash_wrapped(prep: &Prepared, ix: i32, iy: i32, k: u32, cells: [i32;
 }
 
 /// The lower edge of row `k` of planks: `k + widths·(h(k) − ½)`, `h` the row's hash (wrapped
-/// at `rows`, 0: not), so that with `widths` ≤ ½ each edge stays within ¼ of its integer and
-/// rows are ½–1½ units wide.
+/// at `rows`, 0: not), so that with `widths` ≤ ½ (the searched range) each edge stays within ¼
+/// of its integer and rows are ½–1½ units wide; at 1 (the range's end) within ½, rows 0–2
+/// units wide, edges never crossing.
 ///
 /// Ours: the planks of a real floor or wall are seldom of one width (old wood's vary about
 /// 2:1), and rows of equal width put the pattern's power into the harmonics of one period,
@@ -979,21 +985,33 @@ mod tests {
                 [y.floor(), y.floor(), y.floor() + 1.0]
             );
         }
-        // With it, every y lies in its row; widths ½–1½; some rows differ clearly.
-        let mut widths = Vec::new();
-        for i in -400..400 {
-            let y = i as f32 * 0.0437;
-            let [row, lo, hi] = plank_row(&prep, y, 0.5, 0);
-            assert!(lo <= y && y < hi, "{y}: row {row} [{lo}, {hi})");
-            assert_eq!(lo, plank_edge(&prep, row as i32, 0.5, 0));
-            assert_eq!(hi, plank_edge(&prep, row as i32 + 1, 0.5, 0));
-            widths.push(hi - lo);
-        }
-        assert!(widths.iter().all(|w| (0.5..=1.5).contains(w)));
-        let (min, max) = widths
-            .iter()
-            .fold((f32::MAX, f32::MIN), |(a, b), &w| (a.min(w), b.max(w)));
-        assert!(max - min > 0.4, "widths {min}–{max}");
+        // With it, every y lies in its row, between its two edges; returns the rows' widths'
+        // least and greatest.
+        let spread = |widths: f32| {
+            let mut seen = Vec::new();
+            for i in -400..400 {
+                let y = i as f32 * 0.0437;
+                let [row, lo, hi] = plank_row(&prep, y, widths, 0);
+                assert!(lo <= y && y < hi, "{y}: row {row} [{lo}, {hi})");
+                assert_eq!(lo, plank_edge(&prep, row as i32, widths, 0));
+                assert_eq!(hi, plank_edge(&prep, row as i32 + 1, widths, 0));
+                seen.push(hi - lo);
+            }
+            seen.iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), &w| (a.min(w), b.max(w)))
+        };
+        // 0.5 (the searched range's end): widths ½–1½, some rows differ clearly.
+        let (min, max) = spread(0.5);
+        assert!(
+            0.5 <= min && max <= 1.5 && max - min > 0.4,
+            "widths {min}–{max}"
+        );
+        // 1 (the range's end): edges move up to ½ either way, rows 0–2 wide, never crossing.
+        let (min, max) = spread(1.0);
+        assert!(
+            0.0 <= min && max <= 2.0 && max - min > 1.0,
+            "widths {min}–{max}"
+        );
         // Wrapped at 6 rows, the edges repeat every 6.
         for k in -7..7 {
             let (a, b) = (
