@@ -174,7 +174,7 @@ pub fn fit_structured(
         }
         a
     };
-    let candidates = roughness_candidates(pattern);
+    let candidates = irregularity_candidates(pattern);
     if photo.pixels.len() < 64 {
         let (base, _, _) = fit_structured_gains(photo, pattern, opts, swapped, &tile);
         return with_tone(base);
@@ -250,10 +250,10 @@ pub fn fit_structured(
     }
 }
 
-/// Steps above the refined roughness that step 6 also tries ([`roughness_candidates`]).
+/// Steps above the refined roughness that step 6 also tries ([`irregularity_candidates`]).
 const ROUGHNESS_STEPS: [f32; 2] = [0.06, 0.12];
 
-/// Steps above the refined planks' `widths` that step 6 also tries ([`roughness_candidates`]).
+/// Steps above the refined planks' `widths` that step 6 also tries ([`irregularity_candidates`]).
 ///
 /// Ours: rows whose edges move up to ±¼ (`widths` 0.5, the searched range) still put the
 /// pattern's power into the harmonics of one period; up to ±½ (`widths` 1) the fundamental's
@@ -265,6 +265,11 @@ const ROUGHNESS_STEPS: [f32; 2] = [0.06, 0.12];
 /// same amplitude it spread the harmonics less (17.4 px: −12.6 dB) and, with the database
 /// rebuilt, moved wood planks' ratios to 1.67 / 1.07 / 1.69: not kept.
 const WIDTHS_STEPS: [f32; 2] = [0.25, 0.5];
+
+/// The value that [`irregularity_candidates`] raises, per family (the first that the family
+/// has), and its steps.
+const IRREGULARITY_STEPS: [(&str, [f32; 2]); 2] =
+    [("roughness", ROUGHNESS_STEPS), ("widths", WIDTHS_STEPS)];
 
 /// The patterns step 6 of [`fit_structured`] tries: `pattern` itself and, for a family with a
 /// `roughness`, the same with the roughness raised by [`ROUGHNESS_STEPS`] (within its range);
@@ -283,20 +288,12 @@ const WIDTHS_STEPS: [f32; 2] = [0.25, 0.5];
 /// the spectrum ratios by 0.01 or less on hacienda, planks, old wood, black rock and gravel,
 /// and rock wall's 1.14 → 1.09 (colour 1.20 → 1.26; README table). Hacienda's refined fits sit at 0.87–0.9, hence ridged's
 /// range up to 1 ([`crate::pattern::ValueSpec::search_max`]).
-fn roughness_candidates(pattern: &Pattern) -> Vec<Pattern> {
+fn irregularity_candidates(pattern: &Pattern) -> Vec<Pattern> {
     let mut out = vec![pattern.clone()];
-    let specs = pattern.kind.specs();
-    let Some((spec, steps)) = specs
-        .iter()
-        .find(|s| s.name == "roughness")
-        .map(|s| (s, ROUGHNESS_STEPS))
-        .or_else(|| {
-            specs
-                .iter()
-                .find(|s| s.name == "widths")
-                .map(|s| (s, WIDTHS_STEPS))
-        })
-    else {
+    let Some((spec, steps)) = IRREGULARITY_STEPS.iter().find_map(|&(name, steps)| {
+        let spec = pattern.kind.specs().iter().find(|s| s.name == name)?;
+        Some((spec, steps))
+    }) else {
         return out;
     };
     let r = pattern
@@ -899,11 +896,11 @@ mod tests {
     use crate::render::{View, render};
 
     #[test]
-    fn step_6_tries_rougher_patterns_within_the_range() {
+    fn step_6_tries_rougher_and_more_irregular_patterns_within_the_range() {
         let rough = |kind, r: f32| {
             let mut p = Pattern::new(kind, 20.0);
             assert!(p.set("roughness", r));
-            roughness_candidates(&p)
+            irregularity_candidates(&p)
                 .iter()
                 .map(|c| c.get("roughness").unwrap())
                 .collect::<Vec<f32>>()
@@ -918,14 +915,14 @@ mod tests {
         // Turbulence's stops at 0.9; a family without roughness is tried as it is.
         assert!(near(&rough(PatternKind::Turbulence, 0.9), &[0.9]));
         assert_eq!(
-            roughness_candidates(&Pattern::new(PatternKind::Brick, 9.0)).len(),
+            irregularity_candidates(&Pattern::new(PatternKind::Brick, 9.0)).len(),
             1
         );
         // Planks: more irregular widths, up to the range's end (1), past the searched 0.5.
         let widths = |w: f32| {
             let mut p = Pattern::new(PatternKind::Planks, 20.0);
             assert!(p.set("widths", w));
-            roughness_candidates(&p)
+            irregularity_candidates(&p)
                 .iter()
                 .map(|c| c.get("widths").unwrap())
                 .collect::<Vec<f32>>()

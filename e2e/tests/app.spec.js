@@ -91,6 +91,7 @@ test('GPU view equals the CPU reference renderer for every pattern family', asyn
     // A pattern, not a flat field (both renderers agreeing on nothing).
     expect(Math.max(...sd)).toBeGreaterThan(4);
   }
+  fs.rmSync(dir, { recursive: true, force: true });
 });
 
 test('dragging the finest band weight raises and removes high-frequency energy', async ({ page }) => {
