@@ -7,6 +7,8 @@
 const PATTERN_OCTAVES: u32 = 5u;
 // rng::stream::CELLS
 const CELLS_STREAM: u32 = 0x63656c6cu;
+// pattern::WARP_OFFSET
+const WARP_OFFSET: f32 = 19.3;
 
 fn soft_step(e0: f32, w: f32, x: f32) -> f32 {
     let t = clamp((x - e0) / w, 0.0, 1.0);
@@ -172,24 +174,35 @@ fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
             let shade = 1.0 - w1.y * cell_hash_wrapped(i32(ix), i32(iy), 0u, n);
             return soft_step(0.5 * w0.y, max(w1.x, soft), d) * shade;
         }
-        // cells: jitter, mortar, bevel, variation, stretch
+        // cells: jitter, mortar, bevel, variation, stretch, stagger, warp
         case 6u: {
             let n = wrap_cells(w1.x, wrap);
-            let p = vec2<f32>(q.x / w1.x, q.y);
-            let ix = floor(p.x);
+            var p = vec2<f32>(q.x / w1.x, q.y);
+            if (w1.z > 0.0) {
+                let per = vec2<f32>(0.25 * wrap.x / w1.x, 0.25 * wrap.y);
+                let b = vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * q.z);
+                let gx = octaves(b, 0.5, 0u, 0.0, lfp - 2.0, per);
+                let b2 = vec3<f32>(b.x + WARP_OFFSET, b.y, b.z);
+                let gy = octaves(b2, 0.5, 0u, 0.0, lfp - 2.0, per);
+                p = vec2<f32>(p.x + w1.z * gx, p.y + w1.z * gy);
+            }
             let iy = floor(p.y);
-            let f = vec2<f32>(p.x - ix, p.y - iy);
+            let fy = p.y - iy;
             var f1 = 1e9;
             var f2 = 1e9;
             var id = vec2<i32>(0, 0);
             for (var dy = -1; dy <= 1; dy++) {
+                let cy = i32(iy) + dy;
+                let shift = 0.5 * w1.y * f32(wrap_cell(cy, n.y) & 1);
+                let x = p.x - shift;
+                let ix = floor(x);
+                let fx = x - ix;
                 for (var dx = -1; dx <= 1; dx++) {
                     let cx = i32(ix) + dx;
-                    let cy = i32(iy) + dy;
                     let px = f32(dx) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 0u, n) - 0.5);
                     let py = f32(dy) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 1u, n) - 0.5);
-                    let ex = px - f.x;
-                    let ey = py - f.y;
+                    let ex = px - fx;
+                    let ey = py - fy;
                     let d = ex * ex + ey * ey;
                     if (d < f1) {
                         f2 = f1;

@@ -1,6 +1,8 @@
 //! Diagnostic: where, per quarter-octave ring of the spectrum distance
 //! ([`proctex::evaluate::radial_spectrum`]), the fidelity protocol's syntheses (noise model and
-//! auto) differ from the other patch. `cargo run --release --example rings -- PHOTO [SEEDS]`
+//! auto) differ from the other patch. `cargo run --release --example rings -- PHOTO [SEEDS]
+//! [MODEL]` (MODEL, `auto` by default, is what the second column set shows: `auto`, `noise` or a
+//! family's name)
 //! prints, per ring, its period in pixels, the RMS dB difference between the two patches, the
 //! mean (the bias) and RMS dB difference (synthesis − other patch) of each model, and the RMS
 //! difference to the analysed patch itself (in-sample); on stderr, which model auto chose per
@@ -29,7 +31,9 @@ fn main() {
         ),
     ];
     let rings = radial_spectrum(&pairs[0].0).len();
-    let models = [("noise", ModelChoice::Noise), ("auto", ModelChoice::Auto)];
+    let label = args.get(3).map(String::as_str).unwrap_or("auto");
+    let choice = ModelChoice::parse(label).expect("MODEL: auto, noise or a family's name");
+    let models = [("noise", ModelChoice::Noise), (label, choice)];
     let mut sum = vec![vec![0.0f64; rings]; 2];
     let mut sq = vec![vec![0.0f64; rings]; 2];
     let mut ab = vec![0.0f64; rings];
@@ -56,7 +60,7 @@ fn main() {
                             Model::Noise(_) => "noise".to_string(),
                             Model::Structured(s) => s.pattern.kind.name().to_string(),
                         };
-                        eprintln!("seed {seed}: auto = {name}");
+                        eprintln!("seed {seed}: {label} = {name}");
                     }
                     let rs = db(&radial_spectrum(&syn));
                     for k in 0..rings {
@@ -70,7 +74,9 @@ fn main() {
             }
         }
     }
-    println!("ring period   A-B rms   noise mean  rms   auto mean  rms   in-sample rms noise auto");
+    println!(
+        "ring period   A-B rms   noise mean  rms   {label:>5} mean  rms   in-sample rms noise {label}"
+    );
     let (mut tn, mut ta, mut tab) = (0.0, 0.0, 0.0);
     for k in 0..rings {
         let period = 2.0 * 2f64.powf((k as f64 + 0.5) / 4.0);
@@ -88,7 +94,7 @@ fn main() {
     }
     let r = rings as f64;
     println!(
-        "rms over rings: A-B {:.2}  noise {:.2}  auto {:.2}",
+        "rms over rings: A-B {:.2}  noise {:.2}  {label} {:.2}",
         (tab / r).sqrt(),
         (tn / r).sqrt(),
         (ta / r).sqrt()

@@ -385,7 +385,12 @@ mod tests {
     fn structured_patterns_repeat_with_the_tile() {
         use crate::pattern::{Pattern, PatternKind};
         let tile = Tile::new_2d(4);
-        for kind in PatternKind::ALL {
+        // Every family at its defaults, and cells' staggered, warped lattice (scales).
+        let variants = PatternKind::ALL.into_iter().map(|k| (k, vec![])).chain([(
+            PatternKind::Cells,
+            vec![("jitter", 0.3), ("stagger", 1.0), ("warp", 0.5)],
+        )]);
+        for (kind, values) in variants {
             for (i, (scale, rot)) in [
                 (9.0f32, 0.0f32),
                 (23.5, 100.0),
@@ -397,6 +402,9 @@ mod tests {
             {
                 let mut pat = Pattern::new(kind, scale);
                 pat.rotation_deg = rot;
+                for &(k, v) in &values {
+                    assert!(pat.set(k, v));
+                }
                 let params = crate::structure::shell(pat, 7 + i as u32, false);
                 let prep = Prepared::new(&params);
                 let s = Seamless::new(&prep, tile.n, 256, 1.0).unwrap();
@@ -421,7 +429,7 @@ mod tests {
                 }
                 assert!(
                     bad * 100 <= total,
-                    "{kind:?} at scale {scale}, {rot}°: {bad} of {total} points differ a tile away"
+                    "{kind:?} {values:?} at scale {scale}, {rot}°: {bad} of {total} points differ a tile away"
                 );
             }
         }

@@ -56,14 +56,15 @@ test('GPU view equals the CPU reference renderer', async ({ page }) => {
 });
 
 test('GPU view equals the CPU reference renderer for every pattern family', async ({ page }) => {
-  // Eleven SwiftShader renders and CLI renders: ~1.7 min alone, past 3 min on a busy machine.
+  // Twelve SwiftShader renders and CLI renders: ~1.8 min alone, past 3 min on a busy machine.
   test.setTimeout(360_000);
   const { execFileSync } = require('child_process');
   const os = require('os');
   await openApp(page);
   // The brick sample fitted with the brick family (ramp, residual, tone curve), its pattern
   // then swapped for each family at its defaults, plus the values at the top of the ranges
-  // that only step 6 of the fit or the sliders reach (ridged's roughness 1, planks' widths).
+  // that only step 6 of the fit or the sliders reach (ridged's roughness 1, planks' widths,
+  // cells' jitter 0), and cells' staggered, warped lattice (scales).
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'proctex-families-'));
   execFileSync(path.join(ROOT, 'target', 'release', 'proctex'), ['analyze',
     path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png'), '--model', 'brick', '--refine', '0',
@@ -71,7 +72,8 @@ test('GPU view equals the CPU reference renderer for every pattern family', asyn
   const fitted = JSON.parse(fs.readFileSync(path.join(dir, 'p.json'), 'utf8'));
   const cases = [
     ['perlin', {}], ['turbulence', {}], ['ridged', {}], ['ridged', { roughness: 1.0 }], ['grid', {}],
-    ['brick', {}], ['cells', {}], ['planks', {}], ['planks', { widths: 1, length: 6 }],
+    ['brick', {}], ['cells', {}], ['cells', { jitter: 0, stagger: 1, warp: 0.5 }], ['planks', {}],
+    ['planks', { widths: 1, length: 6 }],
     ['wood_lines', {}], ['rings', { centre_x: 2, centre_y: 1.5 }],
   ];
   for (const [kind, values] of cases) {

@@ -4,6 +4,8 @@
 #define PATTERN_OCTAVES 5u
 // rng::stream::CELLS
 #define CELLS_STREAM 0x63656c6cu
+// pattern::WARP_OFFSET
+#define WARP_OFFSET 19.3
 
 float soft_step(float e0, float w, float x) {
     float t = clamp((x - e0) / w, 0.0, 1.0);
@@ -175,23 +177,34 @@ float pattern_at(vec3 q, float lfp, vec2 wrap) {
         return soft_step(0.5 * w0.y, max(w1.x, soft), d) * shade;
     }
     case 6u: {
-        // cells: jitter, mortar, bevel, variation, stretch
+        // cells: jitter, mortar, bevel, variation, stretch, stagger, warp
         ivec2 n = wrap_cells(w1.x, wrap);
         vec2 p = vec2(q.x / w1.x, q.y);
-        float ix = floor(p.x);
+        if (w1.z > 0.0) {
+            vec2 per = vec2(0.25 * wrap.x / w1.x, 0.25 * wrap.y);
+            vec3 b = vec3(0.25 * p.x, 0.25 * p.y, 0.25 * q.z);
+            float gx = octaves(b, 0.5, 0u, 0.0, lfp - 2.0, per);
+            vec3 b2 = vec3(b.x + WARP_OFFSET, b.y, b.z);
+            float gy = octaves(b2, 0.5, 0u, 0.0, lfp - 2.0, per);
+            p = vec2(p.x + w1.z * gx, p.y + w1.z * gy);
+        }
         float iy = floor(p.y);
-        vec2 f = vec2(p.x - ix, p.y - iy);
+        float fy = p.y - iy;
         float f1 = 1e9;
         float f2 = 1e9;
         ivec2 id = ivec2(0, 0);
         for (int dy = -1; dy <= 1; dy++) {
+            int cy = int(iy) + dy;
+            float shift = 0.5 * w1.y * float(wrap_cell(cy, n.y) & 1);
+            float x = p.x - shift;
+            float ix = floor(x);
+            float fx = x - ix;
             for (int dx = -1; dx <= 1; dx++) {
                 int cx = int(ix) + dx;
-                int cy = int(iy) + dy;
                 float px = float(dx) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 0u, n) - 0.5);
                 float py = float(dy) + 0.5 + w0.x * (cell_hash_wrapped(cx, cy, 1u, n) - 0.5);
-                float ex = px - f.x;
-                float ey = py - f.y;
+                float ex = px - fx;
+                float ey = py - fy;
                 float d = ex * ex + ey * ey;
                 if (d < f1) {
                     f2 = f1;

@@ -143,6 +143,10 @@ fn uniform_layout_matches_rust() {
         constant("CELLS_STREAM"),
         format!("{:#x}", proctex::rng::stream::CELLS)
     );
+    assert_eq!(
+        constant("WARP_OFFSET").parse::<f32>().unwrap(),
+        proctex::pattern::WARP_OFFSET
+    );
 }
 
 #[test]
