@@ -271,21 +271,23 @@ const WIDTHS_STEPS: [f32; 2] = [0.25, 0.5];
 const IRREGULARITY_STEPS: [(&str, [f32; 2]); 2] =
     [("roughness", ROUGHNESS_STEPS), ("widths", WIDTHS_STEPS)];
 
-/// Factors of cells' scale that step 6 also tries ([`step_6_candidates`]).
+/// Factors of a lattice family's scale (grid, brick, cells, planks) that step 6 also tries
+/// ([`step_6_candidates`]).
 ///
 /// Ours: the descriptor's frequencies are an octave apart, so refinement leaves the scale of a
-/// near-regular lattice (reptile skin's scales, whose spectrum peaks ~10 dB above the rings a
-/// quarter-octave away) uncertain by ±10 %; step 6's spectrum distance has quarter-octave
-/// rings. Measured on the fidelity protocol (seeds 1–6, reptile skin, `--model cells`):
-/// spectrum − noise's −0.14 ± 0.16 → −0.19 ± 0.18, colour and structure within ±0.02. Tried
-/// and not kept: jitter lowered by 0.15 and 0.3 (with the cells' variation halved and
+/// near-regular lattice uncertain by about ±10 %, while its spectrum is peaks (reptile skin's
+/// scales: ~10 dB above the rings a quarter-octave away); step 6's spectrum distance has
+/// quarter-octave rings. Measured on the fidelity protocol (seeds 1–6, spectrum difference to
+/// the noise model): reptile skin `--model cells` −0.14 ± 0.16 → −0.19 ± 0.18, wood planks
+/// +0.06 ± 0.14 → −0.03 ± 0.15, brick −0.36 → −0.35; colour and structure within ±0.04. Tried
+/// on cells and not kept: jitter lowered by 0.15 and 0.3 (with the cells' variation halved and
 /// quartered), warp raised by 0.1 and 0.2: within ±0.04.
-const CELLS_SCALE_STEPS: [f32; 2] = [0.9, 1.1];
+const LATTICE_SCALE_STEPS: [f32; 2] = [0.9, 1.1];
 
 /// The patterns step 6 of [`fit_structured`] tries: `pattern` itself and, for a family with a
 /// `roughness`, the same with the roughness raised by [`ROUGHNESS_STEPS`] (within its range);
 /// for planks, with their `widths` raised by [`WIDTHS_STEPS`] (within its range, past the
-/// searched one); for cells, at their scale times [`CELLS_SCALE_STEPS`].
+/// searched one); for the lattice families, at their scale times [`LATTICE_SCALE_STEPS`].
 ///
 /// Ours: refinement minimises the descriptor's structure distance, which hardly sees the
 /// finest octaves, while the ramp of a crack pattern whose coarse octaves are too strong puts
@@ -301,12 +303,14 @@ const CELLS_SCALE_STEPS: [f32; 2] = [0.9, 1.1];
 /// range up to 1 ([`crate::pattern::ValueSpec::search_max`]).
 fn step_6_candidates(pattern: &Pattern) -> Vec<Pattern> {
     let mut out = vec![pattern.clone()];
-    if pattern.kind == PatternKind::Cells {
-        out.extend(CELLS_SCALE_STEPS.map(|f| Pattern {
+    if matches!(
+        pattern.kind,
+        PatternKind::Grid | PatternKind::Brick | PatternKind::Cells | PatternKind::Planks
+    ) {
+        out.extend(LATTICE_SCALE_STEPS.map(|f| Pattern {
             scale: pattern.scale * f,
             ..pattern.clone()
         }));
-        return out;
     }
     let Some((spec, steps)) = IRREGULARITY_STEPS.iter().find_map(|&(name, steps)| {
         let spec = pattern.kind.specs().iter().find(|s| s.name == name)?;
@@ -929,30 +933,35 @@ mod tests {
         // Ridged's roughness may reach 1 (its range), past the 0.9 its search stops at.
         assert!(near(&rough(PatternKind::Ridged, 0.87), &[0.87, 0.93, 0.99]));
         assert!(near(&rough(PatternKind::Ridged, 0.95), &[0.95, 1.0]));
-        // Turbulence's stops at 0.9; a family without roughness is tried as it is.
+        // Turbulence's stops at 0.9: then it is tried as it is.
         assert!(near(&rough(PatternKind::Turbulence, 0.9), &[0.9]));
-        assert_eq!(
-            step_6_candidates(&Pattern::new(PatternKind::Brick, 9.0)).len(),
-            1
-        );
         // Planks: more irregular widths, up to the range's end (1), past the searched 0.5.
         let widths = |w: f32| {
             let mut p = Pattern::new(PatternKind::Planks, 20.0);
             assert!(p.set("widths", w));
             step_6_candidates(&p)
                 .iter()
+                .filter(|c| c.scale == p.scale)
                 .map(|c| c.get("widths").unwrap())
                 .collect::<Vec<f32>>()
         };
         assert!(near(&widths(0.2), &[0.2, 0.45, 0.7]));
         assert!(near(&widths(0.5), &[0.5, 0.75, 1.0]));
         assert!(near(&widths(0.9), &[0.9, 1.0]));
-        // Cells: the same lattice a little finer and coarser.
-        let scales: Vec<f32> = step_6_candidates(&Pattern::new(PatternKind::Cells, 20.0))
-            .iter()
-            .map(|c| c.scale)
-            .collect();
-        assert!(near(&scales, &[20.0, 18.0, 22.0]));
+        // Lattices: the same a little finer and coarser (planks: then their widths raised).
+        let scales = |kind| {
+            step_6_candidates(&Pattern::new(kind, 20.0))
+                .iter()
+                .map(|c| c.scale)
+                .collect::<Vec<f32>>()
+        };
+        assert!(near(&scales(PatternKind::Cells), &[20.0, 18.0, 22.0]));
+        assert!(near(&scales(PatternKind::Brick), &[20.0, 18.0, 22.0]));
+        assert!(near(
+            &scales(PatternKind::Planks),
+            &[20.0, 18.0, 22.0, 20.0, 20.0]
+        ));
+        assert!(near(&scales(PatternKind::Rings), &[20.0, 20.0, 20.0]));
     }
 
     #[test]
