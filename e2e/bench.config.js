@@ -7,5 +7,6 @@ module.exports = {
   testDir: './bench',
   testMatch: '*.bench.js',
   timeout: 900_000,
+  reporter: [['list']],
   use: { ...base.use, viewport: { width: 1680, height: 1100 } },
 };

@@ -9,7 +9,8 @@ module.exports = defineConfig({
   timeout: 180_000,
   expect: { timeout: 30_000 },
   workers: 1,
-  reporter: [['list']],
+  // list for the log; json for scripts/test.sh's ten slowest tests (e2e/slowest.js).
+  reporter: [['list'], ['json', { outputFile: '../target/e2e/results.json' }]],
   use: {
     baseURL: `http://127.0.0.1:${PORT}/`,
     viewport: { width: 1200, height: 800 },

@@ -10,7 +10,39 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-step() { printf '\n== %s\n' "$*"; }
+# Every stage's wall time, printed at the end (also when a stage fails), so that every CI log
+# shows where the time goes.
+STAGE_NAMES=()
+STAGE_SECONDS=()
+stage_name=""
+stage_start=0
+run_start=$(date +%s)
+end_stage() {
+    if [ -n "$stage_name" ]; then
+        STAGE_NAMES+=("$stage_name")
+        STAGE_SECONDS+=($(($(date +%s) - stage_start)))
+    fi
+    stage_name=""
+}
+step() {
+    end_stage
+    printf '\n== %s\n' "$*"
+    stage_name="$*"
+    stage_start=$(date +%s)
+}
+print_stage_times() {
+    end_stage
+    printf '\n== wall time per stage\n'
+    local i
+    for i in "${!STAGE_NAMES[@]}"; do
+        printf '%7s  %s\n' "$(date -u -d "@${STAGE_SECONDS[$i]}" +%H:%M:%S)" "${STAGE_NAMES[$i]}"
+    done
+    printf '%7s  %s\n' "$(date -u -d "@$(($(date +%s) - run_start))" +%H:%M:%S)" "total"
+    if [ -f target/e2e/results.json ]; then
+        node e2e/slowest.js target/e2e/results.json 10 || true
+    fi
+}
+trap print_stage_times EXIT
 
 # apt-get as root, or through sudo.
 apt_install() {
@@ -50,8 +82,10 @@ cargo --version
 step "cargo fmt --check"
 cargo fmt --all --check
 
-step "cargo clippy --all-targets -- -D warnings"
+step "cargo clippy --all-targets -- -D warnings (native)"
 cargo clippy --workspace --release --all-targets -- -D warnings
+
+step "cargo clippy -- -D warnings (wasm)"
 rustup target list --installed | grep -q wasm32-unknown-unknown || rustup target add wasm32-unknown-unknown
 cargo clippy -p proctex-web --target wasm32-unknown-unknown --release -- -D warnings
 
@@ -78,6 +112,7 @@ step "Playwright (e2e/, Chromium with SwiftShader WebGPU)"
 PROCTEX_E2E_PORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 export PROCTEX_E2E_PORT
 elog=$(mktemp)
+rm -f target/e2e/results.json
 (cd e2e && npx playwright test) 2>&1 | grep -v '^\[WebServer\]' | tee "$elog"
 e2e_passed=$(sed -nE 's/^ *([0-9]+) passed.*/\1/p' "$elog" | tail -1)
 e2e_failed=$(sed -nE 's/^ *([0-9]+) failed.*/\1/p' "$elog" | tail -1)
@@ -85,8 +120,10 @@ rm -f "$elog"
 e2e_passed=${e2e_passed:-0}
 e2e_failed=${e2e_failed:-0}
 
-step "benchmarks (ratios within one run; not pass/fail tests)"
+step "benchmark: analyzer (ratios within one run; not a pass/fail test)"
 cargo bench -p proctex-analyzer --bench analysis
+
+step "benchmark: browser app (ratios within one run; not a pass/fail test)"
 (cd e2e && npx playwright test --config bench.config.js) 2>&1 | grep -v -e '^\[WebServer\]' -e '^\[page\]'
 
 step "summary"

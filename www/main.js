@@ -414,6 +414,8 @@ window.proctex = {
   setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
   setViewMode: (mode) => wasm.setViewMode(mode),
   setFlatShader: (on) => wasm.setFlatShader(on),
+  setFrameCache: (on) => wasm.setFrameCache(on),
+  setViewLimit: (width, height) => wasm.setViewLimit(width, height),
   setTileOptions: (size, bits, forceCpu) => wasm.setTileOptions(size, bits, !!forceCpu),
   state: () => JSON.parse(wasm.state()),
   requestRepaint: () => wasm.requestRepaint(),
@@ -477,6 +479,10 @@ async function main() {
     return;
   }
   appRunning = true;
+  // ?view=WxH: the texture view at most W×H CSS px, at the top-left of its panel (tests and
+  // screenshots: every render of the view costs in proportion to its pixels).
+  const viewLimit = /^(\d+)x(\d+)$/.exec(new URLSearchParams(location.search).get('view') ?? '');
+  if (viewLimit) wasm.setViewLimit(Number(viewLimit[1]), Number(viewLimit[2]));
   setInterval(() => {
     if (handle.has_panicked()) {
       show(`Proctex stopped on an internal error:\n${handle.panic_message() ?? ''}\n` +

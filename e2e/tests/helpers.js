@@ -9,10 +9,16 @@ const path = require('path');
 const ROOT = path.resolve(__dirname, '..', '..');
 const CLI = path.join(ROOT, 'target', 'release', 'proctex');
 
-async function openApp(page) {
+// The texture view's size in the tests (CSS px): the largest region a check reads is 264²
+// (a 256² grab 8 px inside the view), and every render of the view on the software adapter
+// costs in proportion to its pixels (a 500×775 view: ~2 s a frame on 2 cores).
+const VIEW = [288, 288];
+
+// Opens the app with its texture view at most `view` (CSS px; null: the whole panel).
+async function openApp(page, { view = VIEW } = {}) {
   page.on('console', (m) => console.log(`[page] ${m.text()}`));
   page.on('pageerror', (e) => console.log(`[page error] ${e.message}`));
-  await page.goto('/');
+  await page.goto(view ? `/?view=${view[0]}x${view[1]}` : '/');
   await page.waitForFunction(() => window.proctex && window.proctex.ready, null, { timeout: 120_000 });
   await waitFrames(page, 3);
 }

@@ -35,7 +35,8 @@ for (const shape of ['sphere', 'cube']) {
 }
 
 test('the split view shows the photo crop beside the texture', async ({ page }) => {
-  await openApp(page);
+  // Two halves, each wide enough for a 200² grab.
+  await openApp(page, { view: [464, 288] });
   await clickWidget(page, 'mode.split');
   await waitFrames(page, 3);
   const s = await state(page);

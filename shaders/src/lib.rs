@@ -28,6 +28,8 @@ pub const PATTERN: &str = include_str!("../pattern.wgsl");
 pub const PLANE: &str = include_str!("../plane.wgsl");
 /// The solid view: sphere or cube of the 3D texture, orbit camera.
 pub const SOLID: &str = include_str!("../solid.wgsl");
+/// The app's frame cache of the texture view copied to the canvas, pixel for pixel.
+pub const VIEW_COPY: &str = include_str!("../view_copy.wgsl");
 
 /// Morphing with t as a uniform (exported morphs): the params of `t` from every key's constants.
 pub const MORPH: &str = include_str!("../morph.wgsl");
@@ -188,7 +190,7 @@ fn odd_offset(n: u32) -> u32 {
 }
 
 /// Every WGSL file: (name, source).
-pub const FILES: [(&str, &str); 16] = [
+pub const FILES: [(&str, &str); 17] = [
     ("hash.wgsl", HASH),
     ("pattern.wgsl", PATTERN),
     ("params.wgsl", PARAMS),
@@ -205,6 +207,7 @@ pub const FILES: [(&str, &str); 16] = [
     ("solid.wgsl", SOLID),
     ("bake.wgsl", BAKE),
     ("seamless.wgsl", SEAMLESS),
+    ("view_copy.wgsl", VIEW_COPY),
 ];
 
 /// Every complete shader: (name, source).
@@ -212,6 +215,7 @@ pub fn shaders() -> Vec<(&'static str, String)> {
     vec![
         ("plane", plane_shader()),
         ("solid", solid_shader()),
+        ("view_copy", VIEW_COPY.to_string()),
         ("seamless", seamless_shader()),
         (
             "bake",

@@ -2,7 +2,7 @@
 
 /// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
 /// the same name, except for the ones listed in `RENAMED`.
-const TWIN_FILES: [(&str, &[&str]); 15] = [
+const TWIN_FILES: [(&str, &[&str]); 16] = [
     ("hash.wgsl", &["analyzer/src/rng.rs"]),
     ("pattern.wgsl", &["analyzer/src/pattern.rs"]),
     (
@@ -20,6 +20,7 @@ const TWIN_FILES: [(&str, &[&str]); 15] = [
     ("plane.wgsl", &["analyzer/src/render.rs"]),
     ("solid.wgsl", &["analyzer/src/solid.rs"]),
     ("seamless.wgsl", &["analyzer/src/seamless.rs"]),
+    ("view_copy.wgsl", &["web/src/view_cache.rs"]),
     (
         "bake.wgsl",
         &["analyzer/src/rng.rs", "analyzer/src/noise.rs"],
@@ -28,7 +29,7 @@ const TWIN_FILES: [(&str, &[&str]); 15] = [
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 23] = [
+const RENAMED: [(&str, &str); 25] = [
     // `uniform` would shadow the address space of `var<uniform>` (exported morphs have one).
     ("uniform01", "uniform"),
     ("morph_params", "morph_path"),
@@ -56,6 +57,9 @@ const RENAMED: [(&str, &str); 23] = [
     ("r_value3", "generate"),
     ("band3", "generate"),
     ("upsample3", "upsample"),
+    // The frame cache's copy: the twin is the per-pixel copy of the cached view.
+    ("vs_copy", "copy_view"),
+    ("fs_copy", "copy_view"),
 ];
 
 fn wgsl_functions(src: &str) -> Vec<String> {

@@ -19,8 +19,9 @@ use wasm_bindgen::JsValue;
 
 use crate::jobs::{ImageStats, Report, SuggestionRow, THUMB_SIDE};
 use crate::presets::{MorphPreset, Preset, STORAGE_KEY, library_json, parse_library};
-use crate::renderer::{Pass, TextureRenderer};
+use crate::renderer::Pass;
 use crate::tile_export::{SeamlessCpu, SeamlessGpu, png_scanlines};
+use crate::view_cache::{CachedView, ViewSource};
 
 /// Something JS asked for, applied at the start of the next frame.
 #[derive(Debug)]
@@ -58,6 +59,13 @@ pub enum Command {
     SetMode(ViewMode),
     /// Draw the plane view with the trivial shader (benchmark baseline).
     FlatShader(bool),
+    /// Benchmarks: render the texture on every frame instead of copying the cached view when
+    /// it has not changed (to time the texture shader per frame).
+    FrameCache(bool),
+    /// Tests: the texture view at most this size (points), at the top-left of its panel; `None`
+    /// fills the panel. Each render of the view costs in proportion to its pixels, and most
+    /// checks need only a 256² part of it.
+    ViewLimit(Option<egui::Vec2>),
     /// Add the presets of a library file (validated as a whole first).
     ImportPresets(String),
     /// A built-in gallery preset (a shipped sample's analysis).
@@ -305,6 +313,10 @@ pub struct ProctexApp {
     period_outline: bool,
     period_lines: usize,
     flat_shader: bool,
+    /// Whether the texture view is rendered only when it changes (see `view_cache`).
+    frame_cache: bool,
+    /// The texture view's largest size in points (tests), or the whole panel.
+    view_limit: Option<egui::Vec2>,
     error: Option<String>,
     analysis_ms: Option<f64>,
     analyses: u64,
@@ -402,7 +414,7 @@ impl ProctexApp {
     /// Creates the app and registers the GPU renderer with egui's wgpu renderer.
     pub fn new(cc: &eframe::CreationContext<'_>) -> Self {
         if let Some(rs) = cc.wgpu_render_state.as_ref() {
-            let renderer = TextureRenderer::new(&rs.device, rs.target_format);
+            let renderer = CachedView::new(&rs.device, rs.target_format);
             rs.renderer.write().callback_resources.insert(renderer);
         }
         cc.egui_ctx.set_fonts(ui_fonts());
@@ -420,6 +432,8 @@ impl ProctexApp {
             period_outline: false,
             period_lines: 0,
             flat_shader: false,
+            frame_cache: true,
+            view_limit: None,
             error: None,
             analysis_ms: None,
             analyses: 0,
@@ -858,6 +872,8 @@ impl ProctexApp {
                 }
                 Command::SetMode(m) => self.mode = m,
                 Command::FlatShader(on) => self.flat_shader = on,
+                Command::FrameCache(on) => self.frame_cache = on,
+                Command::ViewLimit(limit) => self.view_limit = limit,
                 Command::TileOptions {
                     size,
                     bits,
@@ -2004,8 +2020,11 @@ impl ProctexApp {
 
     /// Central panel: the texture.
     fn view_panel(&mut self, ui: &mut egui::Ui) {
-        let (rect, response) =
-            ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
+        let size = match self.view_limit {
+            Some(limit) => ui.available_size().min(limit),
+            None => ui.available_size(),
+        };
+        let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
         self.record("texture", &response);
         let Some(params) = self.params.clone() else {
             ui.painter().text(
@@ -2140,14 +2159,20 @@ impl ProctexApp {
         solid: Option<SolidView>,
     ) {
         let ppp = ui.ctx().pixels_per_point();
+        let min = [(rect.min.x * ppp).round(), (rect.min.y * ppp).round()];
+        let max = [(rect.max.x * ppp).round(), (rect.max.y * ppp).round()];
         ui.painter().add(egui_wgpu::Callback::new_paint_callback(
             rect,
             TextureCallback {
                 params,
                 pass,
-                view,
-                solid,
-                frame_offset: [(rect.min.x * ppp).round(), (rect.min.y * ppp).round()],
+                view: match solid {
+                    Some(sv) => ViewSource::Solid(sv),
+                    None => ViewSource::Plane(view),
+                },
+                frame_offset: min.map(|v| v as i32),
+                frame_size: [0, 1].map(|i| (max[i] - min[i]).max(1.0) as u32),
+                fresh: !self.frame_cache,
             },
         ));
     }
@@ -2352,14 +2377,15 @@ impl eframe::App for ProctexApp {
     }
 }
 
-/// One frame's texture draw: the params and view to upload, then the full-screen triangle
-/// clipped to the view rectangle by egui.
+/// One frame's texture draw: the view rendered into the frame cache when it changed, then
+/// copied into the view rectangle (clipped by egui).
 struct TextureCallback {
     params: Params,
     pass: Pass,
-    view: View,
-    solid: Option<SolidView>,
-    frame_offset: [f32; 2],
+    view: ViewSource,
+    frame_offset: [i32; 2],
+    frame_size: [u32; 2],
+    fresh: bool,
 }
 
 impl egui_wgpu::CallbackTrait for TextureCallback {
@@ -2368,15 +2394,21 @@ impl egui_wgpu::CallbackTrait for TextureCallback {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         _screen: &egui_wgpu::ScreenDescriptor,
-        _encoder: &mut wgpu::CommandEncoder,
+        encoder: &mut wgpu::CommandEncoder,
         resources: &mut egui_wgpu::CallbackResources,
     ) -> Vec<wgpu::CommandBuffer> {
-        if let Some(r) = resources.get_mut::<TextureRenderer>() {
-            r.set_params(device, queue, &self.params);
-            match &self.solid {
-                Some(sv) => r.set_solid_view(queue, sv),
-                None => r.set_view(queue, &self.view, self.frame_offset),
-            }
+        if let Some(r) = resources.get_mut::<CachedView>() {
+            r.prepare(
+                device,
+                queue,
+                encoder,
+                &self.params,
+                self.pass,
+                &self.view,
+                self.frame_offset,
+                self.frame_size,
+                self.fresh,
+            );
         }
         Vec::new()
     }
@@ -2387,8 +2419,8 @@ impl egui_wgpu::CallbackTrait for TextureCallback {
         pass: &mut wgpu::RenderPass<'static>,
         resources: &egui_wgpu::CallbackResources,
     ) {
-        if let Some(r) = resources.get::<TextureRenderer>() {
-            r.draw_pass(pass, self.pass);
+        if let Some(r) = resources.get::<CachedView>() {
+            r.paint(pass);
         }
     }
 }

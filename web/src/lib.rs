@@ -6,6 +6,7 @@ pub mod jobs;
 pub mod presets;
 pub mod renderer;
 pub mod tile_export;
+pub mod view_cache;
 
 #[cfg(target_arch = "wasm32")]
 mod app;

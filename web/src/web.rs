@@ -406,6 +406,21 @@ pub fn set_flat_shader(on: bool) {
     send(Command::FlatShader(on));
 }
 
+/// Benchmarks: `false` renders the texture view on every frame instead of copying the frame
+/// cache while the view is unchanged (the default, `true`).
+#[wasm_bindgen(js_name = setFrameCache)]
+pub fn set_frame_cache(on: bool) {
+    send(Command::FrameCache(on));
+}
+
+/// Tests: the texture view at most `width × height` CSS px (at the top-left of its panel), or
+/// the whole panel when either is 0. A render of the view costs in proportion to its pixels.
+#[wasm_bindgen(js_name = setViewLimit)]
+pub fn set_view_limit(width: f32, height: f32) {
+    let limit = (width > 0.0 && height > 0.0).then(|| eframe::egui::vec2(width, height));
+    send(Command::ViewLimit(limit));
+}
+
 /// PNG tile export choices (the app's menus, for tests): side 16..=8192, 8 or 16 bits, and
 /// whether to render on the CPU even with a GPU (to exercise the fallback).
 #[wasm_bindgen(js_name = setTileOptions)]

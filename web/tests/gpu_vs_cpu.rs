@@ -14,41 +14,8 @@ use proctex::render::{View, render, render_flat};
 use proctex::solid::{Orbit, Shape, SolidView, render_solid};
 use proctex_web::renderer::{Pass, TextureRenderer};
 
-struct Gpu {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    adapter_name: String,
-}
-
-fn gpu() -> Gpu {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
-        backends: wgpu::Backends::VULKAN,
-        ..wgpu::InstanceDescriptor::new_without_display_handle()
-    });
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::LowPower,
-        force_fallback_adapter: false,
-        compatible_surface: None,
-        ..Default::default()
-    }))
-    .expect(
-        "no Vulkan adapter: install Mesa's software Vulkan driver (apt-get install \
-         mesa-vulkan-drivers); scripts/test.sh does",
-    );
-    let adapter_name = adapter.get_info().name;
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("gpu_vs_cpu"),
-        required_features: wgpu::Features::empty(),
-        required_limits: wgpu::Limits::downlevel_defaults(),
-        ..Default::default()
-    }))
-    .expect("device");
-    Gpu {
-        device,
-        queue,
-        adapter_name,
-    }
-}
+mod common;
+use common::{Gpu, clear_pass, gpu, read_rgb8, rgba8_target};
 
 /// Renders `params` with the GPU pipeline into a `w × h` rgba8unorm texture; returns RGB8.
 /// What a GPU render draws.
@@ -60,20 +27,7 @@ enum What {
 
 fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, what: &What) -> Vec<u8> {
     let format = wgpu::TextureFormat::Rgba8Unorm;
-    let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("target"),
-        size: wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+    let target = rgba8_target(gpu, w, h);
     let mut renderer = TextureRenderer::new(&gpu.device, format);
     let pass_kind = match what {
         What::Plane(view) => {
@@ -96,72 +50,16 @@ fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, what: &What) -> Vec<u8
             Pass::Solid
         }
     };
-    let row = (w * 4).div_ceil(256) * 256;
-    let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: (row * h) as u64,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
     let mut encoder = gpu
         .device
         .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
     {
         let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("texture"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &target_view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = clear_pass(&mut encoder, &target_view);
         renderer.draw_pass(&mut pass, pass_kind);
     }
-    encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture: &target,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        wgpu::TexelCopyBufferInfo {
-            buffer: &readback,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(row),
-                rows_per_image: Some(h),
-            },
-        },
-        wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-    );
     gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let data = slice.get_mapped_range().expect("mapped");
-    let mut rgb = Vec::with_capacity((w * h * 3) as usize);
-    for y in 0..h {
-        let line = &data[(y * row) as usize..(y * row + w * 4) as usize];
-        for px in line.chunks_exact(4) {
-            rgb.extend_from_slice(&px[..3]);
-        }
-    }
-    rgb
+    read_rgb8(gpu, &target, w, h)
 }
 
 fn sample_params(name: &str) -> Params {
