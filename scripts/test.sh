@@ -3,7 +3,9 @@
 # formatting, lints (warnings are errors, native and wasm), all cargo tests (with naga
 # validation and the native GPU-vs-CPU shader test), the wasm build, the Playwright tests in
 # Chromium, then the speed benchmarks, analyzer and browser app (they print ratios measured in
-# one run and assert nothing about time).
+# one run and assert nothing about time; quick mode here, PROCTEX_BENCH=full for the full run).
+# At the end (also after a failure) it prints every stage's wall time and the ten slowest
+# Playwright tests.
 # Installs what it needs: a Rust toolchain with rustfmt and clippy, Mesa's software Vulkan
 # driver (lavapipe), Debian's chromium and glslang-tools (compiles the exported GLSL), and (through scripts/build-web.sh) the wasm target,
 # wasm-bindgen-cli and the npm packages.
@@ -120,10 +122,17 @@ rm -f "$elog"
 e2e_passed=${e2e_passed:-0}
 e2e_failed=${e2e_failed:-0}
 
-step "benchmark: analyzer (ratios within one run; not a pass/fail test)"
-cargo bench -p proctex-analyzer --bench analysis
+# The benchmarks' quick mode (fewer repetitions, the database build projected from a part;
+# every ratio printed): PROCTEX_BENCH=full ./scripts/test.sh runs them in full.
+PROCTEX_BENCH=${PROCTEX_BENCH:-quick}
+export PROCTEX_BENCH
+bench_args=()
+[ "$PROCTEX_BENCH" = full ] || bench_args=(--quick)
 
-step "benchmark: browser app (ratios within one run; not a pass/fail test)"
+step "benchmark: analyzer, $PROCTEX_BENCH (ratios within one run; not a pass/fail test)"
+cargo bench -p proctex-analyzer --bench analysis -- "${bench_args[@]}"
+
+step "benchmark: browser app, $PROCTEX_BENCH (ratios within one run; not a pass/fail test)"
 (cd e2e && npx playwright test --config bench.config.js) 2>&1 | grep -v -e '^\[WebServer\]' -e '^\[page\]'
 
 step "summary"

@@ -536,7 +536,7 @@ fn exported_wgsl_renders_the_cpu_image() {
         ("rings (structured, solid)", rings),
     ] {
         let src = proctex::export::wgsl(&params).unwrap();
-        exported_wgsl_matches_cpu(&gpu, name, &src, &params, None);
+        exported_wgsl_matches_cpu(&gpu, &src, &[(name.to_string(), params, None)]);
     }
 }
 
@@ -550,16 +550,14 @@ fn exported_morph_renders_the_cpu_morph() {
     wood.transform.rotation_deg = 300.0;
     let keys = vec![gravel, rock, wood];
     let src = proctex::export::morph_wgsl(&keys).unwrap();
-    for t in [0.0f32, 0.2, 0.5, 0.75, 0.9, 1.0] {
-        let params = proctex::morph::morph_path(&keys, t).unwrap();
-        exported_wgsl_matches_cpu(
-            &gpu,
-            &format!("morph of 3, t = {t}"),
-            &src,
-            &params,
-            Some(t),
-        );
-    }
+    let cases: Vec<_> = [0.0f32, 0.2, 0.5, 0.75, 0.9, 1.0]
+        .into_iter()
+        .map(|t| {
+            let params = proctex::morph::morph_path(&keys, t).unwrap();
+            (format!("morph of 3, t = {t}"), params, Some(t))
+        })
+        .collect();
+    exported_wgsl_matches_cpu(&gpu, &src, &cases);
 }
 
 /// The exported morph through structured models equals the CPU's morph along t: one family
@@ -584,43 +582,49 @@ fn exported_structured_morph_renders_the_cpu_morph() {
     let cells = structured(&gravel, PatternKind::Cells);
     let keys = vec![brick_a, brick_b, gravel, cells];
     let src = proctex::export::morph_wgsl(&keys).unwrap();
-    for t in [0.1f32, 0.3, 0.45, 0.5, 0.9] {
-        let params = proctex::morph::morph_path(&keys, t).unwrap();
-        exported_wgsl_matches_cpu(
-            &gpu,
-            &format!("structured morph of 4, t = {t}"),
-            &src,
-            &params,
-            Some(t),
-        );
-    }
+    let cases: Vec<_> = [0.1f32, 0.3, 0.45, 0.5, 0.9]
+        .into_iter()
+        .map(|t| {
+            let params = proctex::morph::morph_path(&keys, t).unwrap();
+            (format!("structured morph of 4, t = {t}"), params, Some(t))
+        })
+        .collect();
+    exported_wgsl_matches_cpu(&gpu, &src, &cases);
     let mut rings = structured(&rock, PatternKind::Rings);
     rings.solid = true;
     let mut cells = structured(&rock, PatternKind::Cells);
     cells.solid = true;
     let keys = vec![rings, cells];
     let src = proctex::export::morph_wgsl(&keys).unwrap();
-    for t in [0.3f32, 0.7] {
-        let params = proctex::morph::morph_path(&keys, t).unwrap();
-        exported_wgsl_matches_cpu(
-            &gpu,
-            &format!("solid structured morph, t = {t}"),
-            &src,
-            &params,
-            Some(t),
-        );
-    }
+    let cases: Vec<_> = [0.3f32, 0.7]
+        .into_iter()
+        .map(|t| {
+            let params = proctex::morph::morph_path(&keys, t).unwrap();
+            (format!("solid structured morph, t = {t}"), params, Some(t))
+        })
+        .collect();
+    exported_wgsl_matches_cpu(&gpu, &src, &cases);
 }
 
-fn exported_wgsl_matches_cpu(gpu: &Gpu, name: &str, src: &str, params: &Params, t: Option<f32>) {
+/// Renders the exported shader `src` as a host does (its header's steps: the tile baked by its
+/// own passes, the full-screen pass) for each case (a name, the params the CPU renders, and a
+/// morph's t), and compares with the CPU reference. One shader module and pipeline serve every
+/// case, as a host animating a morph's t would use them: compiling a morph shader is the slow
+/// step on a software driver.
+fn exported_wgsl_matches_cpu(gpu: &Gpu, src: &str, cases: &[(String, Params, Option<f32>)]) {
     let module = gpu
         .device
         .create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("exported"),
             source: wgpu::ShaderSource::Wgsl(src.to_string().into()),
         });
+    let solid = cases[0].1.solid;
+    assert!(
+        cases.iter().all(|(_, p, _)| p.solid == solid),
+        "one shader is plane or solid"
+    );
     // The host steps of the snippet's header comment.
-    let tile = if params.solid {
+    let tile = if solid {
         bake3(gpu, &module, proctex::noise::TILE_3D as u32)
     } else {
         let n = proctex::noise::TILE_2D as u32;
@@ -630,20 +634,6 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, name: &str, src: &str, params: &Params, 
     };
     let (w, h) = (256u32, 192u32);
     let format = wgpu::TextureFormat::Rgba8Unorm;
-    let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("target"),
-        size: wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
     let pipeline = gpu
         .device
         .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -672,127 +662,76 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, name: &str, src: &str, params: &Params, 
             cache: None,
         });
     let tile_view = tile.create_view(&wgpu::TextureViewDescriptor::default());
-    // The morph's t: a 16-byte uniform buffer at binding 3, t in its first f32.
-    let t_buffer = t.map(|t| {
-        use wgpu::util::DeviceExt;
-        let mut bytes = [0u8; 16];
-        bytes[..4].copy_from_slice(&t.to_le_bytes());
-        gpu.device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("proctex_t"),
-                contents: &bytes,
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
-    });
-    let t_entry = t_buffer.as_ref().map(|b| wgpu::BindGroupEntry {
-        binding: 3,
-        resource: b.as_entire_binding(),
-    });
-    let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: wgpu::BindingResource::TextureView(&tile_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&tile_view),
-            },
-        ]
-        .into_iter()
-        .chain(t_entry)
-        .collect::<Vec<_>>(),
-    });
-    let row = (w * 4).div_ceil(256) * 256;
-    let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size: (row * h) as u64,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let mut encoder = gpu
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
-    {
-        let view = target.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: None,
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
+    for (name, params, t) in cases {
+        let target = rgba8_target(gpu, w, h);
+        // The morph's t: a 16-byte uniform buffer at binding 3, t in its first f32.
+        let t_buffer = t.map(|t| {
+            use wgpu::util::DeviceExt;
+            let mut bytes = [0u8; 16];
+            bytes[..4].copy_from_slice(&t.to_le_bytes());
+            gpu.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("proctex_t"),
+                    contents: &bytes,
+                    usage: wgpu::BufferUsages::UNIFORM,
+                })
         });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.draw(0..3, 0..1);
-    }
-    encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture: &target,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        wgpu::TexelCopyBufferInfo {
-            buffer: &readback,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(row),
-                rows_per_image: Some(h),
-            },
-        },
-        wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-    );
-    gpu.queue.submit([encoder.finish()]);
-    let slice = readback.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let data = slice.get_mapped_range().expect("mapped");
-    let cpu = render(params, w, h, &View::default()).to_rgb8();
-    let mut sum = 0.0f64;
-    let mut max = 0u8;
-    let mut far = 0usize;
-    for y in 0..h {
-        for x in 0..w {
-            let g = &data[(y * row + x * 4) as usize..(y * row + x * 4 + 3) as usize];
-            let c = &cpu[((y * w + x) * 3) as usize..((y * w + x) * 3 + 3) as usize];
-            for k in 0..3 {
-                let d = g[k].abs_diff(c[k]);
-                sum += d as f64;
-                max = max.max(d);
-                far += (d > 3) as usize;
-            }
+        let t_entry = t_buffer.as_ref().map(|b| wgpu::BindGroupEntry {
+            binding: 3,
+            resource: b.as_entire_binding(),
+        });
+        let group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&tile_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&tile_view),
+                },
+            ]
+            .into_iter()
+            .chain(t_entry)
+            .collect::<Vec<_>>(),
+        });
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
+        {
+            let view = target.create_view(&wgpu::TextureViewDescriptor::default());
+            let mut pass = clear_pass(&mut encoder, &view);
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &group, &[]);
+            pass.draw(0..3, 0..1);
         }
+        gpu.queue.submit([encoder.finish()]);
+        let got = read_rgb8(gpu, &target, w, h);
+        let cpu = render(params, w, h, &View::default()).to_rgb8();
+        let mut sum = 0.0f64;
+        let mut max = 0u8;
+        let mut far = 0usize;
+        for (g, c) in got.iter().zip(&cpu) {
+            let d = g.abs_diff(*c);
+            sum += d as f64;
+            max = max.max(d);
+            far += (d > 3) as usize;
+        }
+        let mae = sum / (w * h * 3) as f64;
+        let far = far as f64 / (w * h * 3) as f64;
+        println!(
+            "exported WGSL (tile baked on the GPU) vs CPU, {name} {w}×{h} on {}: mean {mae:.4}/255, max {max}/255, {:.3} % beyond 3/255",
+            gpu.adapter_name,
+            100.0 * far
+        );
+        // Structured patterns: see compare_within.
+        assert!(
+            mae <= 0.25 && (max <= 3 || far <= 0.002),
+            "{name}: mean {mae}, max {max}"
+        );
     }
-    let mae = sum / (w * h * 3) as f64;
-    let far = far as f64 / (w * h * 3) as f64;
-    println!(
-        "exported WGSL (tile baked on the GPU) vs CPU, {name} {w}×{h} on {}: mean {mae:.4}/255, max {max}/255, {:.3} % beyond 3/255",
-        gpu.adapter_name,
-        100.0 * far
-    );
-    // Structured patterns: see compare_within.
-    assert!(
-        mae <= 0.25 && (max <= 3 || far <= 0.002),
-        "{name}: mean {mae}, max {max}"
-    );
 }
 
 /// The PNG tile export: the seamless tile rendered in strips by `shaders/seamless.wgsl`
