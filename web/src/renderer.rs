@@ -67,8 +67,9 @@ pub struct TextureRenderer {
     uploaded: Option<Params>,
 }
 
-/// A tile texture binding (r32float, read with textureLoad: unfilterable).
-fn tile_entry(
+/// A texture binding read with textureLoad, unfilterable: the noise tiles (r32float) and the
+/// view cache's image.
+pub(crate) fn tile_entry(
     binding: u32,
     view_dimension: wgpu::TextureViewDimension,
 ) -> wgpu::BindGroupLayoutEntry {
@@ -84,7 +85,7 @@ fn tile_entry(
     }
 }
 
-fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+pub(crate) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
@@ -161,6 +162,68 @@ pub(crate) fn r32_texture(
     texture
 }
 
+/// A pipeline that draws the full-screen triangle of `vs` with the fragment shader `fs` into
+/// one target of `format`, without blending (every shader of the app and its tests; `layout`
+/// `None`: derived from the shader).
+pub fn full_screen_pipeline(
+    device: &wgpu::Device,
+    layout: Option<&wgpu::PipelineLayout>,
+    module: &wgpu::ShaderModule,
+    vs: &str,
+    fs: &str,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(fs),
+        layout,
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some(vs),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(fs),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// A render pass into `view` that clears it to black and keeps what is drawn.
+pub fn clear_pass<'a>(
+    encoder: &'a mut wgpu::CommandEncoder,
+    view: &'a wgpu::TextureView,
+    label: &str,
+) -> wgpu::RenderPass<'a> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
 impl TextureRenderer {
     /// Creates the pipeline for a target of `format` (the canvas or an offscreen texture).
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
@@ -180,31 +243,7 @@ impl TextureRenderer {
             immediate_size: 0,
         });
         let make = |module: &wgpu::ShaderModule, vs: &str, fs: &str| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(fs),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module,
-                    entry_point: Some(vs),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState::default(),
-                depth_stencil: None,
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module,
-                    entry_point: Some(fs),
-                    compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            full_screen_pipeline(device, Some(&layout), module, vs, fs, format)
         };
         let pipeline = make(&module, "vs_main", "fs_main");
         let flat_pipeline = make(&module, "vs_main", "fs_flat");

@@ -15,7 +15,9 @@ use proctex::params::Params;
 use proctex::render::Prepared;
 use proctex::seamless::{self, Seamless, render_rows};
 
-use crate::renderer::{params_layout, r32_texture, uniform_layout};
+use crate::renderer::{
+    clear_pass, full_screen_pipeline, params_layout, r32_texture, uniform_layout,
+};
 
 /// Pixels per strip (the strip is `size` wide and `STRIP_PIXELS / size` rows high).
 const STRIP_PIXELS: u32 = 1 << 18;
@@ -76,31 +78,14 @@ impl SeamlessGpu {
             immediate_size: 0,
         });
         let format = wgpu::TextureFormat::Rgba32Float;
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("seamless"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_seamless"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_seamless"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = full_screen_pipeline(
+            device,
+            Some(&layout),
+            &module,
+            "vs_seamless",
+            "fs_seamless",
+            format,
+        );
         let uniform = |label, contents: &[u8]| {
             let b = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -216,22 +201,7 @@ impl SeamlessGpu {
             let view = self
                 .target
                 .create_view(&wgpu::TextureViewDescriptor::default());
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("seamless strip"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = clear_pass(&mut encoder, &view, "seamless strip");
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.params_group, &[]);
             pass.set_bind_group(1, &self.seamless_group, &[]);

@@ -19,7 +19,9 @@ use proctex::params::Params;
 use proctex::render::View;
 use proctex::solid::SolidView;
 
-use crate::renderer::{Pass, TextureRenderer};
+use crate::renderer::{
+    Pass, TextureRenderer, clear_pass, full_screen_pipeline, tile_entry, uniform_entry,
+};
 
 /// Size of the copy's uniform (`struct ViewCopy` in `shaders/view_copy.wgsl`).
 const COPY_UNIFORM_SIZE: usize = 16;
@@ -98,26 +100,8 @@ impl CachedView {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("proctex view copy"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                tile_entry(0, wgpu::TextureViewDimension::D2),
+                uniform_entry(1),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -125,31 +109,14 @@ impl CachedView {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("proctex view copy"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_copy"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_copy"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = full_screen_pipeline(
+            device,
+            Some(&pipeline_layout),
+            &module,
+            "vs_copy",
+            "fs_copy",
+            format,
+        );
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("proctex view copy"),
             size: COPY_UNIFORM_SIZE as u64,
@@ -228,22 +195,7 @@ impl CachedView {
                 self.renderer.set_solid_view(queue, &at_origin);
             }
         }
-        let mut rp = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("proctex view cache"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &target.view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut rp = clear_pass(encoder, &target.view, "proctex view cache");
         self.renderer.draw_pass(&mut rp, pass);
         drop(rp);
         self.key = Some(key);

@@ -12,10 +12,10 @@ use proctex::analyze::{Options, analyze_bytes};
 use proctex::params::Params;
 use proctex::render::{View, render, render_flat};
 use proctex::solid::{Orbit, Shape, SolidView, render_solid};
-use proctex_web::renderer::{Pass, TextureRenderer};
+use proctex_web::renderer::{Pass, TextureRenderer, clear_pass, full_screen_pipeline};
 
 mod common;
-use common::{Gpu, clear_pass, gpu, read_rgb8, rgba8_target};
+use common::{Gpu, gpu, read_rgb8, read_texture, rgba8_target};
 
 /// Renders `params` with the GPU pipeline into a `w × h` rgba8unorm texture; returns RGB8.
 /// What a GPU render draws.
@@ -55,7 +55,7 @@ fn render_gpu(gpu: &Gpu, params: &Params, w: u32, h: u32, what: &What) -> Vec<u8
         .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
     {
         let target_view = target.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut pass = clear_pass(&mut encoder, &target_view);
+        let mut pass = clear_pass(&mut encoder, &target_view, "texture");
         renderer.draw_pass(&mut pass, pass_kind);
     }
     gpu.queue.submit([encoder.finish()]);
@@ -320,33 +320,7 @@ fn bake_pass(
             | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     });
-    let pipeline = gpu
-        .device
-        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(entry),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module,
-                entry_point: Some("vs_bake"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+    let pipeline = full_screen_pipeline(&gpu.device, None, module, "vs_bake", entry, format);
     let group = src.map(|t| {
         let view = t.create_view(&wgpu::TextureViewDescriptor::default());
         gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -363,22 +337,7 @@ fn bake_pass(
         .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
     {
         let view = target.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(entry),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = clear_pass(&mut encoder, &view, entry);
         pass.set_pipeline(&pipeline);
         if let Some(g) = &group {
             pass.set_bind_group(0, g, &[]);
@@ -390,53 +349,10 @@ fn bake_pass(
 }
 
 fn read_r32(gpu: &Gpu, t: &wgpu::Texture, w: u32, h: u32) -> Vec<f32> {
-    let row = (w * 4).div_ceil(256) * 256;
-    let buf = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-        label: None,
-        size: (row * h) as u64,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let mut encoder = gpu
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
-    encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture: t,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect: wgpu::TextureAspect::All,
-        },
-        wgpu::TexelCopyBufferInfo {
-            buffer: &buf,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(row),
-                rows_per_image: Some(h),
-            },
-        },
-        wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-    );
-    gpu.queue.submit([encoder.finish()]);
-    let slice = buf.slice(..);
-    slice.map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let data = slice.get_mapped_range().expect("mapped");
-    let mut out = Vec::with_capacity((w * h) as usize);
-    for y in 0..h {
-        let line = &data[(y * row) as usize..(y * row + w * 4) as usize];
-        out.extend(
-            line.chunks_exact(4)
-                .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-        );
-    }
-    out
+    read_texture(gpu, t, w, h, 4)
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect()
 }
 
 #[test]
@@ -634,33 +550,7 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, src: &str, cases: &[(String, Params, Opt
     };
     let (w, h) = (256u32, 192u32);
     let format = wgpu::TextureFormat::Rgba8Unorm;
-    let pipeline = gpu
-        .device
-        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("exported"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+    let pipeline = full_screen_pipeline(&gpu.device, None, &module, "vs_main", "fs_main", format);
     let tile_view = tile.create_view(&wgpu::TextureViewDescriptor::default());
     for (name, params, t) in cases {
         let target = rgba8_target(gpu, w, h);
@@ -702,7 +592,7 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, src: &str, cases: &[(String, Params, Opt
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
         {
             let view = target.create_view(&wgpu::TextureViewDescriptor::default());
-            let mut pass = clear_pass(&mut encoder, &view);
+            let mut pass = clear_pass(&mut encoder, &view, "exported");
             pass.set_pipeline(&pipeline);
             pass.set_bind_group(0, &group, &[]);
             pass.draw(0..3, 0..1);

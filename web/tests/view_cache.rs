@@ -6,11 +6,11 @@ use proctex::analyze::{Options, analyze_bytes};
 use proctex::params::Params;
 use proctex::render::View;
 use proctex::solid::{Orbit, Shape, SolidView};
-use proctex_web::renderer::{Pass, TextureRenderer};
+use proctex_web::renderer::{Pass, TextureRenderer, clear_pass};
 use proctex_web::view_cache::{CachedView, ViewSource};
 
 mod common;
-use common::{Gpu, clear_pass, gpu, read_rgb8, rgba8_target};
+use common::{Gpu, gpu, read_rgb8, rgba8_target};
 
 /// The canvas, and the view's rectangle inside it (offset and size, pixels).
 const CANVAS: [u32; 2] = [96, 80];
@@ -55,7 +55,7 @@ fn direct(gpu: &Gpu, params: &Params, pass_kind: Pass, view: &ViewSource) -> Vec
         .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
     {
         let canvas = target.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut pass = clear_pass(&mut encoder, &canvas);
+        let mut pass = clear_pass(&mut encoder, &canvas, "canvas");
         clip_to_view(&mut pass);
         renderer.draw_pass(&mut pass, pass_kind);
     }
@@ -90,7 +90,7 @@ fn through_cache(
     );
     {
         let canvas = target.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut pass = clear_pass(&mut encoder, &canvas);
+        let mut pass = clear_pass(&mut encoder, &canvas, "canvas");
         clip_to_view(&mut pass);
         cache.paint(&mut pass);
     }

@@ -40,9 +40,9 @@ pub fn gpu() -> Gpu {
     }
 }
 
-/// Reads a `w × h` rgba8unorm texture (with `COPY_SRC`) back as RGB8, row-major.
-pub fn read_rgb8(gpu: &Gpu, target: &wgpu::Texture, w: u32, h: u32) -> Vec<u8> {
-    let row = (w * 4).div_ceil(256) * 256;
+/// Reads a `w × h` texture (with `COPY_SRC`) of `texel` bytes per texel back, rows packed.
+pub fn read_texture(gpu: &Gpu, target: &wgpu::Texture, w: u32, h: u32, texel: u32) -> Vec<u8> {
+    let row = (w * texel).div_ceil(256) * 256;
     let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
         size: (row * h) as u64,
@@ -80,14 +80,17 @@ pub fn read_rgb8(gpu: &Gpu, target: &wgpu::Texture, w: u32, h: u32) -> Vec<u8> {
         .poll(wgpu::PollType::wait_indefinitely())
         .expect("poll");
     let data = slice.get_mapped_range().expect("mapped");
-    let mut rgb = Vec::with_capacity((w * h * 3) as usize);
-    for y in 0..h {
-        let line = &data[(y * row) as usize..(y * row + w * 4) as usize];
-        for px in line.chunks_exact(4) {
-            rgb.extend_from_slice(&px[..3]);
-        }
-    }
-    rgb
+    (0..h)
+        .flat_map(|y| data[(y * row) as usize..(y * row + w * texel) as usize].to_vec())
+        .collect()
+}
+
+/// Reads a `w × h` rgba8unorm texture (with `COPY_SRC`) back as RGB8, row-major.
+pub fn read_rgb8(gpu: &Gpu, target: &wgpu::Texture, w: u32, h: u32) -> Vec<u8> {
+    read_texture(gpu, target, w, h, 4)
+        .chunks_exact(4)
+        .flat_map(|px| [px[0], px[1], px[2]])
+        .collect()
 }
 
 /// A `w × h` rgba8unorm render target that can be read back.
@@ -105,28 +108,5 @@ pub fn rgba8_target(gpu: &Gpu, w: u32, h: u32) -> wgpu::Texture {
         format: wgpu::TextureFormat::Rgba8Unorm,
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
-    })
-}
-
-/// A render pass clearing `view` to black.
-pub fn clear_pass<'a>(
-    encoder: &'a mut wgpu::CommandEncoder,
-    view: &'a wgpu::TextureView,
-) -> wgpu::RenderPass<'a> {
-    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("target"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: None,
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
     })
 }
