@@ -28,7 +28,7 @@ async function frameTimes(page, frames) {
 }
 
 test('benchmark: 12 MP drop to first frame, longest frame, 2D frame time at 1024²', async ({ page }) => {
-  await openApp(page);
+  await openApp(page, { view: null }); // the whole panel (the tests use a 288² view)
   const lines = [];
   const out = (s) => { lines.push(s); console.log(s); };
   const wasm = fs.statSync(path.join(ROOT, 'www', 'pkg', 'proctex_web_bg.wasm')).size;
@@ -118,7 +118,7 @@ test('benchmark: 12 MP drop to first frame, longest frame, 2D frame time at 1024
 });
 
 test('benchmark: model retrieval for a 256² query in WASM, and what refinement adds', async ({ page }) => {
-  await openApp(page);
+  await openApp(page, { view: null }); // the whole panel (the tests use a 288² view)
   const lines = [];
   const out = (s) => { lines.push(s); console.log(s); };
   const db = fs.statSync(path.join(ROOT, 'www', 'pkg', 'patterns.ptxdb')).size;
