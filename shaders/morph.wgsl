@@ -9,7 +9,10 @@
 // (array<MorphSegment, MORPH_SEGMENT_COUNT>), MORPH_ENDS (array<Params, MORPH_SEGMENT_COUNT + 1>:
 // each key's own params, the images at the keys' t), MORPH_OFFSETS (the band offsets of the
 // first key's seed, which the whole morph renders with), MORPH_SEED (that seed: the cell hash of
-// structured models) and MORPH_PATTERN_OFFSETS (its pattern octaves' offsets).
+// structured models) and MORPH_PATTERN_OFFSETS (its pattern octaves' offsets); and the
+// functions morph_segment(i) and morph_end(i), which read those arrays with constant indices
+// (see `constant_selectors` in analyzer/src/export.rs: drivers compile a run-time index into a
+// constant array of structs slowly).
 //
 // Structured models (morph.rs, morph_structure): within one family the pattern's scale
 // (geometric), rotation (the shorter way) and values (clamped to their ranges) interpolate, and
@@ -238,14 +241,14 @@ fn lerp_tones(st: MorphStructure, u: f32, p: ptr<function, Params>) {
 fn morph_params(t_in: f32) -> Params {
     let t = clamp(t_in, 0.0, 1.0);
     if (t >= 1.0) {
-        return MORPH_ENDS[MORPH_SEGMENT_COUNT];
+        return morph_end(MORPH_SEGMENT_COUNT);
     }
     let segments = f32(MORPH_SEGMENT_COUNT);
     let s = max(min(t * segments, segments - 1e-6), 0.0);
     let i = u32(floor(s));
     let local = s - f32(i);
     if (local == 0.0) {
-        return MORPH_ENDS[i];
+        return morph_end(i);
     }
-    return morph(MORPH_SEGMENTS[i], local);
+    return morph(morph_segment(i), local);
 }

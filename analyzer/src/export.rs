@@ -639,10 +639,11 @@ impl MorphTables {
                  const MORPH_PATTERN_OFFSETS: array<vec4<f32>, {OCTAVES}> = {pattern_offsets};\n\
                  const MORPH_OFFSETS: array<vec4<f32>, {}> = {offsets};\n\
                  const MORPH_SEGMENTS: array<MorphSegment, {s}> = array<MorphSegment, {s}>(\n{}\n);\n\
-                 const MORPH_ENDS: array<Params, {e}> = array<Params, {e}>(\n{}\n);\n",
+                 const MORPH_ENDS: array<Params, {e}> = array<Params, {e}>(\n{}\n);\n{}",
                 3 * MAX_BANDS,
                 segments.join(",\n"),
                 ends.join(",\n"),
+                constant_selectors(lang, s, e),
             ),
             Lang::Glsl => format!(
                 "const uint MORPH_SEGMENT_COUNT = {s}u;\n\
@@ -650,14 +651,43 @@ impl MorphTables {
                  const vec4 MORPH_PATTERN_OFFSETS[{OCTAVES}] = {pattern_offsets};\n\
                  const vec4 MORPH_OFFSETS[{}] = {offsets};\n\
                  const MorphSegment MORPH_SEGMENTS[{s}] = MorphSegment[{s}](\n{}\n);\n\
-                 const Params MORPH_ENDS[{e}] = Params[{e}](\n{}\n);\n",
+                 const Params MORPH_ENDS[{e}] = Params[{e}](\n{}\n);\n{}",
                 3 * MAX_BANDS,
                 segments.join(",\n"),
                 ends.join(",\n"),
+                constant_selectors(lang, s, e),
             ),
         }
     }
 }
+/// `morph_segment(i)` and `morph_end(i)`: segment i and key i of the morph's constant arrays,
+/// each read with a constant index in one case of a switch. Indexed at run time, a constant
+/// array of structs is copied into every invocation's memory before the read, and drivers
+/// compile that slowly: a two-key morph took 58 s to compile on Chromium's software adapter
+/// (SwiftShader) read with `MORPH_ENDS[i]`, 12 s with these selectors; lavapipe 1.7 s → 0.8 s.
+fn constant_selectors(lang: Lang, segments: usize, ends: usize) -> String {
+    let selector = |name: &str, ty: &str, array: &str, n: usize| {
+        let mut cases = String::new();
+        for i in 0..n - 1 {
+            cases += &format!("        case {i}u: {{ return {array}[{i}]; }}\n");
+        }
+        let last = format!("        default: {{ return {array}[{}]; }}\n", n - 1);
+        match lang {
+            Lang::Wgsl => {
+                format!("fn {name}(i: u32) -> {ty} {{\n    switch i {{\n{cases}{last}    }}\n}}\n")
+            }
+            Lang::Glsl => {
+                format!("{ty} {name}(uint i) {{\n    switch (i) {{\n{cases}{last}    }}\n}}\n")
+            }
+        }
+    };
+    format!(
+        "{}{}",
+        selector("morph_segment", "MorphSegment", "MORPH_SEGMENTS", segments),
+        selector("morph_end", "Params", "MORPH_ENDS", ends)
+    )
+}
+
 /// "W x H" of a bake target.
 fn atlas_size(w: u32, h: u32, times: &str) -> String {
     format!("{w} {times} {h}")

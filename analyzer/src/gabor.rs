@@ -198,9 +198,12 @@ pub fn describe(map: &[f32]) -> Descriptor {
         let resp = ifft2(filtered, SIZE, SIZE);
         let (mut s1, mut s2) = (0.0f64, 0.0f64);
         for v in &resp {
-            let m = v.norm() as f64;
-            s1 += m;
-            s2 += m * m;
+            // |v|² in f64, then one square root: `Complex::norm` calls libm's hypotf, which took
+            // 9 % of a native suggestion's time (perf, brick sample).
+            let (re, im) = (v.re as f64, v.im as f64);
+            let q = re * re + im * im;
+            s1 += q.sqrt();
+            s2 += q;
         }
         let m = s1 / n;
         out[i] = m as f32;

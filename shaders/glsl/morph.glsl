@@ -1,7 +1,8 @@
 // Morphing between textures with t as a uniform (GLSL twin of shaders/morph.wgsl; Rust twins in
 // analyzer/src/morph.rs and analyzer/src/histogram.rs). Same operation order, 32-bit floats.
 // Generated constants: MORPH_SEGMENT_COUNT, MORPH_SEGMENTS, MORPH_ENDS, MORPH_OFFSETS,
-// MORPH_SEED, MORPH_PATTERN_OFFSETS. Structured models as in morph.wgsl.
+// MORPH_SEED, MORPH_PATTERN_OFFSETS, and the functions morph_segment(i), morph_end(i) (constant
+// indices, as in morph.wgsl). Structured models as in morph.wgsl.
 
 struct MorphKey {
     vec4 mean;          // mean RGB, contrast
@@ -221,14 +222,14 @@ Params morph(MorphSegment seg, float t) {
 Params morph_params(float t_in) {
     float t = clamp(t_in, 0.0, 1.0);
     if (t >= 1.0) {
-        return MORPH_ENDS[MORPH_SEGMENT_COUNT];
+        return morph_end(MORPH_SEGMENT_COUNT);
     }
     float segments = float(MORPH_SEGMENT_COUNT);
     float s = max(min(t * segments, segments - 1e-6), 0.0);
     uint i = uint(floor(s));
     float local_t = s - float(i);
     if (local_t == 0.0) {
-        return MORPH_ENDS[i];
+        return morph_end(i);
     }
-    return morph(MORPH_SEGMENTS[i], local_t);
+    return morph(morph_segment(i), local_t);
 }

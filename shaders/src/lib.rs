@@ -236,7 +236,9 @@ pub fn shaders() -> Vec<(&'static str, String)> {
                      const MORPH_ENDS = array<Params, 2>(Params(), Params());\n\
                      const MORPH_OFFSETS = array<vec4<f32>, 36>();\n\
                      const MORPH_SEED: u32 = 1u;\n\
-                     const MORPH_PATTERN_OFFSETS = array<vec4<f32>, 5>();",
+                     const MORPH_PATTERN_OFFSETS = array<vec4<f32>, 5>();\n\
+                     fn morph_segment(i: u32) -> MorphSegment { return MORPH_SEGMENTS[0]; }\n\
+                     fn morph_end(i: u32) -> Params { return MORPH_ENDS[min(i, 1u)]; }",
                     MORPH,
                     ATLAS3,
                     TILE3_ATLAS,
