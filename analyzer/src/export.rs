@@ -660,6 +660,7 @@ impl MorphTables {
         }
     }
 }
+
 /// `morph_segment(i)` and `morph_end(i)`: segment i and key i of the morph's constant arrays,
 /// each read with a constant index in one case of a switch. Indexed at run time, a constant
 /// array of structs is copied into every invocation's memory before the read, and drivers
