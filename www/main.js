@@ -31,15 +31,17 @@ const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'modu
 let nextId = 1;
 const pending = new Map();
 let photoJob = 0; // the photo/crop job whose result the app should show
+let suggestJob = 0; // the suggestions asked for the current photo (0: none)
 worker.onmessage = (e) => {
   const m = e.data;
   if (m.type === 'progress') {
     if (m.id === photoJob) wasm.analysisProgress(null, m.stage);
     return;
   }
-  // Model suggestions of the current photo or crop (unsolicited: they follow its analysis).
+  // Model suggestions of the current photo or crop (unsolicited: they follow its analysis,
+  // except the start-up sample's, which start on request: `suggestJob`).
   if (m.type === 'suggestProgress' || m.type === 'suggestions' || m.type === 'suggestError') {
-    if (m.id !== photoJob || !appRunning) return;
+    if ((m.id !== photoJob && m.id !== suggestJob) || !appRunning) return;
     if (m.type === 'suggestProgress') wasm.suggestionProgress(m.done, m.total);
     else if (m.type === 'suggestError') wasm.suggestionsFailed(m.message);
     else {
@@ -74,6 +76,7 @@ function reportError(text) {
 async function analysePhoto(msg, transfer, name) {
   const [id, reply] = job(msg, transfer);
   photoJob = id;
+  suggestJob = 0;
   if (appRunning) wasm.analysisProgress(name, 'Decoding');
   const m = await reply;
   if (m.id !== photoJob) return false; // superseded by a later photo
@@ -84,6 +87,7 @@ async function analysePhoto(msg, transfer, name) {
   lastReport = m.report;
   if (appRunning) {
     wasm.analysisDone(m.report, m.name, m.ms, m.preview, m.pw, m.ph, m.width, m.height);
+    if (m.suggest === false) wasm.suggestionsOnRequest();
   }
   lastTimings = { ms: m.ms, decodeMs: m.decodeMs };
   return true;
@@ -92,9 +96,12 @@ let lastReport = null;
 let lastSuggestions = null;
 let lastTimings = null;
 
-async function loadImage(bytes, name = 'image') {
+// `suggest: false`: the model suggestions wait until the user asks (the start-up sample: its
+// 20–40 s of refinement would compete with the first frames and delay the analysis of the
+// user's own first photo, and most users replace the sample at once).
+async function loadImage(bytes, name = 'image', { suggest = true } = {}) {
   const copy = new Uint8Array(bytes); // transferable, whatever the caller passed
-  return analysePhoto({ type: 'open', bytes: copy, name }, [copy.buffer], name);
+  return analysePhoto({ type: 'open', bytes: copy, name, suggest }, [copy.buffer], name);
 }
 
 async function loadPixels(rgba, width, height, name) {
@@ -112,6 +119,7 @@ async function pumpCrop() {
   cropNext = null;
   const [id, reply] = job({ type: 'crop', crop: c.crop, seed: c.seed });
   photoJob = id;
+  suggestJob = 0;
   wasm.analysisProgress(null, 'Analysing the crop');
   const m = await reply;
   if (m.id === photoJob) {
@@ -382,6 +390,13 @@ window.proctexHost = {
     if (m.type === 'error') wasm.suggestionsFailed(m.message);
     else wasm.suggestionAdopted(m.index, m.report);
   },
+  // The current photo's suggestions, asked for with the app's "Suggest models" button.
+  suggestModels: async () => {
+    const [id, reply] = job({ type: 'suggest' });
+    suggestJob = id;
+    const m = await reply;
+    if (m.type === 'error' && suggestJob === id) wasm.suggestionsFailed(m.message);
+  },
   cancelSuggestions: () => worker.postMessage({ type: 'cancelSuggest' }),
   // The refinement's time budget in seconds (0: none), for the running refinement and the next.
   setRefineBudget: (seconds) => worker.postMessage({ type: 'setRefineBudget', seconds }),
@@ -449,7 +464,8 @@ async function cpuFallback(reason) {
     'Safari 26+, or Firefox with WebGPU enabled.\nBelow: the CPU reference rendering of the ' +
     `sample (${DEFAULT_SAMPLE}), analysed in this page.`, true);
   document.getElementById('proctex_canvas').style.display = 'none';
-  const ok = await window.proctex.loadSample(DEFAULT_SAMPLE);
+  const ok = await loadImage(await fetchBytes(`samples/${DEFAULT_SAMPLE}`), DEFAULT_SAMPLE,
+    { suggest: false });
   if (!ok) return;
   const params = JSON.stringify(JSON.parse(lastReport).params);
   const size = 384;
@@ -490,7 +506,7 @@ async function main() {
     }
   }, 500);
   installPhotoInputs();
-  await window.proctex.loadSample(DEFAULT_SAMPLE);
+  await loadImage(await fetchBytes(`samples/${DEFAULT_SAMPLE}`), DEFAULT_SAMPLE, { suggest: false });
   // A share link: the texture in the fragment replaces the sample's params.
   if (location.hash.startsWith('#p=')) {
     let text = null;

@@ -39,19 +39,24 @@ function previewOf(bitmap) {
 
 // Analyses a new photo; it becomes the current one only when the analysis succeeds, so a bad
 // file leaves the previous photo (and texture) in place.
-async function analyseNew(id, name, bitmap, t0, decodeMs) {
+async function analyseNew(id, name, bitmap, t0, decodeMs, suggest) {
   const rgba = pixelsOf(bitmap);
   const { preview, pw, ph } = previewOf(bitmap);
   const { width, height } = bitmap;
   bitmap.close();
   postMessage({ type: 'progress', id, stage: 'Analysing' });
   const report = wasm.analyzeRgba(rgba, width, height, new Uint32Array(0), 1);
-  photo = { rgba, width, height, name };
+  // `crop` and `seed`: those of the last analysis, for suggestions started on request.
+  photo = { rgba, width, height, name, crop: [], seed: 1 };
   postMessage({
     type: 'analysis', id, name, report, ms: performance.now() - t0, decodeMs,
-    preview, pw, ph, width, height,
+    preview, pw, ph, width, height, suggest,
   }, [preview.buffer]);
-  await startSuggestions(id, [], 1);
+  if (suggest) {
+    await startSuggestions(id, [], 1);
+  } else {
+    dropSuggestion(); // the previous photo's refinement is of no use any more
+  }
 }
 
 // ---- Model suggestions ----
@@ -162,12 +167,17 @@ function dispatch(s, h) {
   h.worker.postMessage({ type: 'refine', token: s.token, family });
 }
 
-async function startSuggestions(id, crop, seed) {
+// Stops and frees the running suggestion job, if any (helpers' replies for it are ignored).
+function dropSuggestion() {
   if (suggestion) {
     clearTimeout(suggestion.budgetTimer);
     suggestion.job.free();
   }
   suggestion = null;
+}
+
+async function startSuggestions(id, crop, seed) {
+  dropSuggestion();
   try {
     await dbReady;
   } catch (e) {
@@ -257,7 +267,7 @@ async function handle(m) {
       }
       const decodeMs = performance.now() - t0;
       try {
-        await analyseNew(m.id, m.name, bitmap, t0, decodeMs);
+        await analyseNew(m.id, m.name, bitmap, t0, decodeMs, m.suggest !== false);
       } catch (e) {
         throw new Error(`${m.name}: ${e.message ?? e}`);
       }
@@ -267,7 +277,7 @@ async function handle(m) {
       const image = new ImageData(new Uint8ClampedArray(m.rgba.buffer), m.width, m.height);
       const bitmap = await createImageBitmap(image);
       try {
-        await analyseNew(m.id, m.name, bitmap, t0, 0);
+        await analyseNew(m.id, m.name, bitmap, t0, 0, true);
       } catch (e) {
         throw new Error(`${m.name}: ${e.message ?? e}`);
       }
@@ -286,8 +296,17 @@ async function handle(m) {
       if (!photo) throw new Error('no photo to crop');
       const report = wasm.analyzeRgba(photo.rgba, photo.width, photo.height,
         new Uint32Array(m.crop), m.seed);
+      photo.crop = m.crop;
+      photo.seed = m.seed;
       postMessage({ type: 'analysis', id: m.id, name: photo.name, report, ms: performance.now() - t0 });
       await startSuggestions(m.id, m.crop, m.seed);
+      return;
+    }
+    case 'suggest': {
+      // Suggestions asked for by the user (the start-up sample gets none by itself).
+      if (!photo) throw new Error('no photo to suggest models for');
+      postMessage({ type: 'suggesting', id: m.id });
+      await startSuggestions(m.id, photo.crop, photo.seed);
       return;
     }
     case 'adopt': {

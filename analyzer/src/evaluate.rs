@@ -336,8 +336,13 @@ pub fn synthesize_model_progress(
     progress: &(dyn Fn(usize, usize) -> bool + Sync),
 ) -> Result<(Photo, Analysis, Vec<Suggestion>)> {
     let (a, suggestions) = analyze_photo_model_progress(photo, opts, choice, refinement, progress)?;
+    Ok((render_at_photo_size(&a, photo), a, suggestions))
+}
+
+/// The analysis' texture rendered at exactly the photo's pixel size.
+fn render_at_photo_size(a: &Analysis, photo: &Photo) -> Photo {
     let world_per_pixel = 1.0; // world units are photo pixels
-    let img = render(
+    render(
         &a.params,
         photo.width,
         photo.height,
@@ -345,8 +350,8 @@ pub fn synthesize_model_progress(
             pixel_size: world_per_pixel,
             ..View::default()
         },
-    );
-    Ok((img.to_photo(), a, suggestions))
+    )
+    .to_photo()
 }
 
 /// The photo's quadrants, each half its size: top-left, top-right, bottom-left, bottom-right.
@@ -406,6 +411,35 @@ pub fn fidelity(
     refinement: Refinement,
     seeds: &[u32],
 ) -> Result<Fidelity> {
+    fidelity_observed(photo, opts, choice, refinement, seeds, &mut |_| {})
+}
+
+/// One synthesis of the fidelity protocol, as [`fidelity_observed`] reports it.
+#[derive(Debug)]
+pub struct SynthesisRun<'a> {
+    /// The source patch: 0 top-left, 1 bottom-left, 2 top-right, 3 bottom-right (the order of
+    /// [`Fidelity::per_patch`]).
+    pub patch: usize,
+    /// The seed of this synthesis.
+    pub seed: u32,
+    /// The candidates ranked for the patch, nearest first (empty for the noise model alone).
+    pub ranking: &'a [Suggestion],
+    /// Wall time of the patch's analysis (model choice included, the render not), milliseconds.
+    pub analysis_ms: f64,
+    /// The synthesis' distances to the other patch of its pair.
+    pub distances: Distances,
+}
+
+/// [`fidelity`], reporting every synthesis to `observe` as it is made (which model each source
+/// patch got, how long its analysis took): what the development-set yardstick tabulates.
+pub fn fidelity_observed(
+    photo: &Photo,
+    opts: &Options,
+    choice: ModelChoice,
+    refinement: Refinement,
+    seeds: &[u32],
+    observe: &mut dyn FnMut(SynthesisRun),
+) -> Result<Fidelity> {
     let [tl, tr, bl, br] = quadrants(photo)?;
     let repeat = quadrants_repeat(photo)?;
     let pairs = [(tl, bl), (tr, br)];
@@ -419,8 +453,19 @@ pub fn fidelity(
         for &seed in seeds {
             let o = Options { seed, ..*opts };
             for (di, (src, other)) in [(a, b), (b, a)].into_iter().enumerate() {
-                let syn = synthesize_model(src, &o, choice, refinement)?.0;
+                let start = std::time::Instant::now();
+                let (analysis, ranking) =
+                    analyze_photo_model_progress(src, &o, choice, refinement, &|_, _| true)?;
+                let analysis_ms = start.elapsed().as_secs_f64() * 1000.0;
+                let syn = render_at_photo_size(&analysis, src);
                 let d = distances(&syn, other);
+                observe(SynthesisRun {
+                    patch: 2 * pi + di,
+                    seed,
+                    ranking: &ranking,
+                    analysis_ms,
+                    distances: d,
+                });
                 synthesis = synthesis.zip(d, |x, y| x + y);
                 per_patch[2 * pi + di] =
                     per_patch[2 * pi + di].zip(d, |x, y| x + y / seeds.len() as f64);

@@ -9,6 +9,7 @@
 pub mod analyze;
 pub mod colour;
 pub mod db;
+pub mod devset;
 pub mod error;
 pub mod evaluate;
 pub mod export;

@@ -236,6 +236,53 @@ fn fidelity_against_another_model_prints_the_paired_difference() {
 }
 
 #[test]
+fn the_dev_set_yardstick_tabulates_choices_and_fidelity() {
+    // A one-photo set in a folder of its own, retrieval without refinement (fast): every
+    // source patch's choice, both models' fidelity, and the summary.
+    let dir = std::path::PathBuf::from(tmp("devset"));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(sample("stk_blackrock_256.png"), dir.join("rock.png")).unwrap();
+    std::fs::write(
+        dir.join("manifest.tsv"),
+        "file\tcategory\tmaterial\tfamilies\tlicense\nrock.png\tstochastic\tblack rock\tnoise\tCC0\n",
+    )
+    .unwrap();
+    let set = dir.to_string_lossy().into_owned();
+    let o = proctex(&["fidelity", "--set", &set, "--refine", "0", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let lines: Vec<serde_json::Value> = stdout(&o)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2, "one photo, then the summary");
+    let photo = &lines[0]["photo"];
+    assert_eq!(photo["entry"]["file"], "rock.png");
+    assert_eq!(photo["choices"].as_array().unwrap().len(), 4);
+    assert_eq!(photo["choices"][0]["top3"].as_array().unwrap().len(), 3);
+    assert!(photo["auto"]["spectrum_ratio"].as_f64().unwrap() > 0.0);
+    let summary = &lines[1]["summary"];
+    assert_eq!(summary["stochastic_ok"]["total"], 4);
+    assert_eq!(summary["structured_labelled"]["total"], 0);
+    // The text table, of fold 0 of 1 (every photo); a set without a manifest is bad input.
+    let args = ["fidelity", "--set", &set, "--refine", "0", "--fold", "0/1"];
+    let text = stdout(&proctex(&args));
+    assert!(
+        text.contains("rock.png (stochastic: black rock; labels noise)"),
+        "{text}"
+    );
+    assert!(text.contains("summary of fold 0 of 1"), "{text}");
+    assert!(text.contains("stochastic patches served well: "), "{text}");
+    assert!(text.contains("confusion"), "{text}");
+    let o = proctex(&["fidelity", "--set", "/nonexistent/set"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("/nonexistent/set/manifest.tsv"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn bad_usage_exits_2() {
     for args in [
         vec!["frobnicate"],
@@ -250,6 +297,10 @@ fn bad_usage_exits_2() {
         vec!["fidelity", "x.png", "--against", "bogus"],
         vec!["analyze", "x.png", "--refine-seconds", "0"],
         vec!["synth", "x.png", "-o", "y.png", "--refine-seconds", "nan"],
+        vec!["fidelity", "--set", "d", "--fold", "4/4"],
+        vec!["fidelity", "--set", "d", "--fold", "x"],
+        vec!["fidelity", "x.png", "--fold", "0/4"],
+        vec!["fidelity", "--set", "d", "x.png"],
     ] {
         let o = proctex(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));

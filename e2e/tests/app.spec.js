@@ -10,6 +10,10 @@ test('opens on the sample, already rendered', async ({ page }) => {
   expect(s.photo).toBe('stk_rock_mountain_512.png');
   expect(s.error).toBeNull();
   expect(s.analysis_ms).toBeGreaterThan(0);
+  // The sample's model suggestions wait for the user's click (suggest.spec.js clicks it).
+  expect(s.widgets['suggest.start']).toBeTruthy();
+  expect(s.suggest_progress).toBeNull();
+  expect(s.suggestions).toEqual([]);
   const img = await grab(page, innerSquare(s.widgets.texture, 256));
   const stats = channelStats(img);
   // A real texture: varied, and with the photo's greyish colour.

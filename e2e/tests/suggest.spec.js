@@ -108,13 +108,15 @@ test("the adopted structured model's output tone curve toggles and its tones swa
   expect(meanDiff(await grab(page, square), untoned)).toBeGreaterThan(2);
 });
 
-test('Cancel stops the refinement and ranks what there is', async ({ page }) => {
+test('the start-up sample suggests models on request; Cancel stops the refinement and ranks what there is', async ({ page }) => {
   await openApp(page);
-  await page.evaluate(() => window.proctex.loadSample('skimage_brick_512.png'));
+  // The start-up sample's suggestions start with the button (a new photo's start by themselves).
+  expect((await state(page)).suggest_progress).toBeNull();
+  await clickWidget(page, 'suggest.start');
   await page.waitForFunction(() => {
     window.proctex.requestRepaint();
     const s = window.proctex.state();
-    return s.photo === 'skimage_brick_512.png' && s.suggest_progress && s.widgets['suggest.cancel'];
+    return s.photo === 'stk_rock_mountain_512.png' && s.suggest_progress && s.widgets['suggest.cancel'];
   }, null, { polling: 50, timeout: 120_000 });
   await clickWidget(page, 'suggest.cancel');
   await page.waitForFunction(() => {

@@ -72,6 +72,9 @@ pub enum Command {
     GalleryPreset(String, Box<Params>),
     /// The worker refined `done` of `total` families of the current photo's suggestions.
     SuggestProgress { done: u32, total: u32 },
+    /// The photo just analysed gets its suggestions only when the user asks (the start-up
+    /// sample: see `www/main.js`); the list of the previous photo goes.
+    SuggestOnRequest,
     /// The ranked suggestions of the current photo (or crop).
     Suggestions {
         /// Rows, nearest first.
@@ -356,6 +359,8 @@ struct SuggestState {
     /// The params right after adoption (the row stays marked until they are edited).
     adopted_params: Option<Params>,
     error: Option<String>,
+    /// The current photo's suggestions start when the user asks (a button instead of a list).
+    on_request: bool,
 }
 
 /// The PNG tile export's choices.
@@ -667,6 +672,24 @@ impl ProctexApp {
             });
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(100));
+        } else if self.suggest.on_request {
+            ui.horizontal_wrapped(|ui| {
+                let r = ui.button("Suggest models").on_hover_text(
+                    "Retrieve and refine every structured model family for this photo and \
+                     rank them against the noise model (the built-in sample waits for this \
+                     click; your own photos get their suggestions at once)",
+                );
+                self.record("suggest.start", &r);
+                if r.clicked() {
+                    if host("suggestModels", &[]) {
+                        self.suggest.on_request = false;
+                    } else {
+                        self.error =
+                            Some("Model suggestions: the page's worker is unavailable".into());
+                    }
+                }
+                ui.label("for this sample; your photos get them at once.");
+            });
         } else if self.suggest.rows.is_empty() && self.suggest.error.is_none() {
             ui.label("Suggestions appear after the analysis.");
         }
@@ -832,6 +855,12 @@ impl ProctexApp {
                         self.suggest = SuggestState::default();
                     }
                     self.suggest.progress = Some((done, total));
+                }
+                Command::SuggestOnRequest => {
+                    self.suggest = SuggestState {
+                        on_request: true,
+                        ..SuggestState::default()
+                    };
                 }
                 Command::Suggestions {
                     rows,

@@ -305,6 +305,13 @@ pub fn suggestion_progress(done: u32, total: u32) {
     send(Command::SuggestProgress { done, total });
 }
 
+/// The photo just analysed gets its model suggestions only when the user asks (the app shows
+/// a button that calls `proctexHost.suggestModels`).
+#[wasm_bindgen(js_name = suggestionsOnRequest)]
+pub fn suggestions_on_request() {
+    send(Command::SuggestOnRequest);
+}
+
 /// The ranked suggestions (rows JSON), their thumbnails (`THUMB_SIDE²` RGBA8 each,
 /// concatenated), whether the refinement was cancelled and whether by its time budget
 /// (`setRefineBudget`), and the best candidate's report JSON

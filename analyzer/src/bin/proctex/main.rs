@@ -1,13 +1,14 @@
 //! `proctex`: the command-line face of the analyzer. Exit codes: 0 success, 1 bad input or a
 //! failed operation (the message says which), 2 bad usage.
 
-use std::path::Path;
+mod fidelity;
+
 use std::process::ExitCode;
 use std::time::Instant;
 
 use proctex::analyze::Options;
 use proctex::db::Db;
-use proctex::evaluate::{distances, fidelity, ratio_difference, synthesize_model_progress};
+use proctex::evaluate::{distances, synthesize_model_progress};
 use proctex::input::{Crop, Photo};
 use proctex::params::Params;
 use proctex::render::{Image, View, period_texels, render};
@@ -98,20 +99,6 @@ Prints texture distances between A and B (any sizes):
     colour       sliced Wasserstein-1 distance of the RGB distributions
     structure    weighted distance of the luminance's Gabor descriptors (orientation, scale and
                  distribution of structure; the retrieval descriptor)";
-
-const FIDELITY_HELP: &str = "\
-proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--json] [analyze OPTIONS]
-
-For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
-bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
-other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio
-(near 1: as close as another patch of the same material), and the floor: the same ratio for
-the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
-can do). --model as for `analyze`, but noise by default (the README's noise-only table).
---against M2 also runs M2 with the same seeds and prints the difference of the ratios (M − M2;
-negative: M is nearer) with its standard error over the distinct source patches, the
-independent samples (a difference within about twice it is not evidence either way): four, or
-two where the quadrants repeat (a tile laid 2×2, each patch twice; the text output says so).";
 
 const MORPH_HELP: &str = "\
 proctex morph A.json B.json [C.json...] --t T [-o OUT.json]
@@ -770,116 +757,6 @@ fn cmd_evaluate(mut a: Args) -> Result<()> {
     Ok(())
 }
 
-fn cmd_fidelity(mut a: Args) -> Result<()> {
-    let mut o = Options::default();
-    let mut model = ModelChoice::Noise;
-    let mut refinement = Refinement::default();
-    let mut files = Vec::new();
-    let mut against = None;
-    let (mut nseeds, mut json) = (3u32, false);
-    while let Some(arg) = a.next() {
-        match arg.as_str() {
-            "-h" | "--help" => {
-                println!("{FIDELITY_HELP}");
-                return Ok(());
-            }
-            "--seeds" => nseeds = a.parsed(&arg)?,
-            "--model" => model = model_choice(&mut a, &arg)?,
-            "--against" => against = Some(model_choice(&mut a, &arg)?),
-            "--refine" => refinement = refinement_of(a.parsed(&arg)?),
-            "--json" => json = true,
-            f if analysis_flag(f, &mut a, &mut o)? => {}
-            f if f.starts_with('-') => return Err(usage(format!("fidelity: unknown option {f}"))),
-            _ => files.push(arg),
-        }
-    }
-    if files.is_empty() || nseeds == 0 {
-        return Err(usage("fidelity: needs at least one photo and --seeds ≥ 1"));
-    }
-    let seeds: Vec<u32> = (1..=nseeds).collect();
-    if !json {
-        println!(
-            "{:<32} {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}",
-            "photo",
-            "dB(A,B)",
-            "dB(S,B)",
-            "ratio",
-            "floor",
-            "col(A,B)",
-            "col(S,B)",
-            "ratio",
-            "floor",
-            "str(A,B)",
-            "str(S,B)",
-            "ratio",
-            "floor"
-        );
-    }
-    for f in &files {
-        let photo = load_photo(f)?;
-        let r = fidelity(&photo, &o, model, refinement, &seeds)?;
-        let diff = match against {
-            Some(m) => {
-                let other = fidelity(&photo, &o, m, refinement, &seeds)?;
-                Some((other, ratio_difference(&r, &other)))
-            }
-            None => None,
-        };
-        let name = Path::new(f)
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_else(|| f.clone());
-        if json {
-            let mut v = serde_json::json!({ "photo": name, "result": r });
-            if let Some((other, (mean, se))) = &diff {
-                v["against"] = serde_json::json!({
-                    "result": other,
-                    "ratio_difference": mean,
-                    "standard_error": se,
-                });
-            }
-            println!("{v}");
-        } else {
-            println!(
-                "{:<32} {:>8.3} {:>8.3} {:>6.2} {:>7.2}   {:>8.4} {:>8.4} {:>6.2} {:>7.2}   {:>8.3} {:>8.3} {:>6.2} {:>7.2}",
-                name,
-                r.halves.spectrum_db,
-                r.synthesis.spectrum_db,
-                r.spectrum_ratio,
-                r.floor_spectrum_ratio,
-                r.halves.colour,
-                r.synthesis.colour,
-                r.colour_ratio,
-                r.floor_colour_ratio,
-                r.halves.structure,
-                r.synthesis.structure,
-                r.structure_ratio,
-                r.floor_structure_ratio
-            );
-            if r.repeat {
-                println!(
-                    "  the quadrants repeat (a tile laid 2×2): two distinct source patches, each the mean of its two copies"
-                );
-            }
-            if let Some((other, (mean, se))) = &diff {
-                println!(
-                    "  against it: ratios {:.2} / {:.2} / {:.2}; difference {:+.2} ± {:.2} / {:+.2} ± {:.2} / {:+.2} ± {:.2} (spectrum / colour / structure)",
-                    other.spectrum_ratio,
-                    other.colour_ratio,
-                    other.structure_ratio,
-                    mean.spectrum_db,
-                    se.spectrum_db,
-                    mean.colour,
-                    se.colour,
-                    mean.structure,
-                    se.structure
-                );
-            }
-        }
-    }
-    Ok(())
-}
-
 fn main() -> ExitCode {
     let mut items: Vec<String> = std::env::args().skip(1).collect();
     if items.is_empty() {
@@ -893,7 +770,7 @@ fn main() -> ExitCode {
         "render" => cmd_render(args),
         "synth" => cmd_synth(args),
         "evaluate" => cmd_evaluate(args),
-        "fidelity" => cmd_fidelity(args),
+        "fidelity" => fidelity::cmd_fidelity(args),
         "morph" => cmd_morph(args),
         "export" => cmd_export(args),
         "build-db" => cmd_build_db(args),

@@ -1,0 +1,321 @@
+//! `proctex fidelity`: the fidelity protocol on photos, and the development-set yardstick
+//! (`--set DIR`) that tabulates the automatic model choice and its fidelity over a labelled set.
+
+use std::path::Path;
+
+use proctex::analyze::Options;
+use proctex::devset::{Category, PhotoResult, Summary, fold_of, overall, parse_manifest, ratios};
+use proctex::evaluate::{fidelity, fidelity_observed, ratio_difference};
+use proctex::retrieve::{ModelChoice, Refinement};
+use proctex::{Error, Result};
+
+use super::{Args, analysis_flag, load_photo, model_choice, read, refinement_of, usage};
+
+const FIDELITY_HELP: &str = "\
+proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--json] [analyze OPTIONS]
+proctex fidelity --set DIR [--seeds N] [--fold K/F] [--json] [analyze OPTIONS]
+
+For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
+bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
+other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio
+(near 1: as close as another patch of the same material), and the floor: the same ratio for
+the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
+can do). --model as for `analyze`, but noise by default (the README's noise-only table).
+--against M2 also runs M2 with the same seeds and prints the difference of the ratios (M − M2;
+negative: M is nearer) with its standard error over the distinct source patches, the
+independent samples (a difference within about twice it is not evidence either way): four, or
+two where the quadrants repeat (a tile laid 2×2, each patch twice; the text output says so).
+
+--set DIR: the development-set yardstick over the photos that DIR/manifest.tsv lists (columns
+file, category, material, and families: the families a good match may use, `noise` for the
+noise model). For every source patch of every photo: the model the automatic choice picks
+(seed 1), whether it is a labelled family (y/n), the first three of its ranking and the
+analysis time; per photo the ratios (spectrum, colour, structure, overall: their mean) of the
+automatic choice and of the noise model alone, with seeds 1..N (default 1). Then the summary:
+labelled-family rates of the structured patches (first and top three), the stochastic patches
+served well (the noise model kept, or a family no farther from the photo), mean overall ratios
+and their difference with standard errors over photos, times, and the confusion matrix.
+--fold K/F: only the photos of fold K (0..F-1) of F, by a hash of the file name (held-out
+folds for cross-validation).";
+
+pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
+    let mut o = Options::default();
+    let mut model = ModelChoice::Noise;
+    let mut refinement = Refinement::default();
+    let mut files = Vec::new();
+    let mut against = None;
+    let (mut nseeds, mut json) = (None, false);
+    let mut set = None;
+    let mut fold = None;
+    while let Some(arg) = a.next() {
+        match arg.as_str() {
+            "-h" | "--help" => {
+                println!("{FIDELITY_HELP}");
+                return Ok(());
+            }
+            "--seeds" => nseeds = Some(a.parsed::<u32>(&arg)?),
+            "--set" => set = Some(a.value(&arg)?),
+            "--fold" => fold = Some(fold_of_arg(&a.value(&arg)?)?),
+            "--model" => model = model_choice(&mut a, &arg)?,
+            "--against" => against = Some(model_choice(&mut a, &arg)?),
+            "--refine" => refinement = refinement_of(a.parsed(&arg)?),
+            "--json" => json = true,
+            f if analysis_flag(f, &mut a, &mut o)? => {}
+            f if f.starts_with('-') => return Err(usage(format!("fidelity: unknown option {f}"))),
+            _ => files.push(arg),
+        }
+    }
+    if let Some(dir) = set {
+        if !files.is_empty() || against.is_some() {
+            return Err(usage(
+                "fidelity --set: no photos and no --against (the set says both)",
+            ));
+        }
+        let seeds: Vec<u32> = (1..=nseeds.unwrap_or(1)).collect();
+        return dev_set(Path::new(&dir), &o, refinement, &seeds, fold, json);
+    }
+    if fold.is_some() {
+        return Err(usage("fidelity: --fold needs --set"));
+    }
+    let nseeds = nseeds.unwrap_or(3);
+    if files.is_empty() || nseeds == 0 {
+        return Err(usage("fidelity: needs at least one photo and --seeds ≥ 1"));
+    }
+    let seeds: Vec<u32> = (1..=nseeds).collect();
+    if !json {
+        println!(
+            "{:<32} {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}",
+            "photo",
+            "dB(A,B)",
+            "dB(S,B)",
+            "ratio",
+            "floor",
+            "col(A,B)",
+            "col(S,B)",
+            "ratio",
+            "floor",
+            "str(A,B)",
+            "str(S,B)",
+            "ratio",
+            "floor"
+        );
+    }
+    for f in &files {
+        let photo = load_photo(f)?;
+        let r = fidelity(&photo, &o, model, refinement, &seeds)?;
+        let diff = match against {
+            Some(m) => {
+                let other = fidelity(&photo, &o, m, refinement, &seeds)?;
+                Some((other, ratio_difference(&r, &other)))
+            }
+            None => None,
+        };
+        let name = Path::new(f)
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| f.clone());
+        if json {
+            let mut v = serde_json::json!({ "photo": name, "result": r });
+            if let Some((other, (mean, se))) = &diff {
+                v["against"] = serde_json::json!({
+                    "result": other,
+                    "ratio_difference": mean,
+                    "standard_error": se,
+                });
+            }
+            println!("{v}");
+        } else {
+            println!(
+                "{:<32} {:>8.3} {:>8.3} {:>6.2} {:>7.2}   {:>8.4} {:>8.4} {:>6.2} {:>7.2}   {:>8.3} {:>8.3} {:>6.2} {:>7.2}",
+                name,
+                r.halves.spectrum_db,
+                r.synthesis.spectrum_db,
+                r.spectrum_ratio,
+                r.floor_spectrum_ratio,
+                r.halves.colour,
+                r.synthesis.colour,
+                r.colour_ratio,
+                r.floor_colour_ratio,
+                r.halves.structure,
+                r.synthesis.structure,
+                r.structure_ratio,
+                r.floor_structure_ratio
+            );
+            if r.repeat {
+                println!(
+                    "  the quadrants repeat (a tile laid 2×2): two distinct source patches, each the mean of its two copies"
+                );
+            }
+            if let Some((other, (mean, se))) = &diff {
+                println!(
+                    "  against it: ratios {:.2} / {:.2} / {:.2}; difference {:+.2} ± {:.2} / {:+.2} ± {:.2} / {:+.2} ± {:.2} (spectrum / colour / structure)",
+                    other.spectrum_ratio,
+                    other.colour_ratio,
+                    other.structure_ratio,
+                    mean.spectrum_db,
+                    se.spectrum_db,
+                    mean.colour,
+                    se.colour,
+                    mean.structure,
+                    se.structure
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `K/F` of `--fold`.
+fn fold_of_arg(v: &str) -> Result<(usize, usize)> {
+    let bad = || usage(format!("--fold: `{v}` is not K/F with 0 ≤ K < F"));
+    let (k, f) = v.split_once('/').ok_or_else(bad)?;
+    let (k, f): (usize, usize) = (k.parse().map_err(|_| bad())?, f.parse().map_err(|_| bad())?);
+    if k >= f {
+        return Err(bad());
+    }
+    Ok((k, f))
+}
+
+/// The development-set yardstick (`--set DIR`): every photo of DIR/manifest.tsv (or of one
+/// fold), measured and printed as it completes, then the summary.
+fn dev_set(
+    dir: &Path,
+    o: &Options,
+    refinement: Refinement,
+    seeds: &[u32],
+    fold: Option<(usize, usize)>,
+    json: bool,
+) -> Result<()> {
+    let manifest = dir.join("manifest.tsv");
+    let text = String::from_utf8(read(&manifest.to_string_lossy())?)
+        .map_err(|_| Error::Option(format!("{}: not UTF-8 text", manifest.display())))?;
+    let entries: Vec<_> = parse_manifest(&text)
+        .map_err(|e| Error::Option(format!("{}: {e}", manifest.display())))?
+        .into_iter()
+        .filter(|e| fold.is_none_or(|(k, f)| fold_of(&e.file, f) == k))
+        .collect();
+    let mut results = Vec::new();
+    let mut sides = Vec::new();
+    for entry in entries {
+        let photo = load_photo(&dir.join(&entry.file).to_string_lossy())?;
+        sides.push(photo.width.min(photo.height) / 2);
+        let r = PhotoResult::measure(
+            entry,
+            |observe| fidelity_observed(&photo, o, ModelChoice::Auto, refinement, seeds, observe),
+            || fidelity(&photo, o, ModelChoice::Noise, refinement, seeds),
+        )?;
+        if json {
+            println!("{}", serde_json::json!({ "photo": r }));
+        } else {
+            print_photo(&r);
+        }
+        results.push(r);
+    }
+    let summary = Summary::of(&results, &sides);
+    if json {
+        println!("{}", serde_json::json!({ "summary": summary }));
+    } else {
+        print_summary(&summary, fold);
+    }
+    Ok(())
+}
+
+fn yes_no(v: Option<bool>) -> &'static str {
+    match v {
+        Some(true) => "y",
+        Some(false) => "n",
+        None => "-",
+    }
+}
+
+fn print_photo(r: &PhotoResult) {
+    let labels = r
+        .entry
+        .families
+        .as_ref()
+        .map_or_else(|| "(no labels)".to_string(), |f| f.join(" "));
+    let category = match r.entry.category {
+        Category::Structured => "structured",
+        Category::Stochastic => "stochastic",
+    };
+    let [s, c, t, all] = ratios(&r.auto);
+    let [ns, nc, nt, nall] = ratios(&r.noise);
+    println!(
+        "{} ({category}: {}; labels {labels}){}",
+        r.entry.file,
+        r.entry.material,
+        if r.auto.repeat {
+            "; its quadrants repeat"
+        } else {
+            ""
+        }
+    );
+    println!(
+        "  ratios spectrum/colour/structure/overall: auto {s:.2} {c:.2} {t:.2} {all:.2}; noise \
+         {ns:.2} {nc:.2} {nt:.2} {nall:.2}; auto − noise {:+.2}",
+        overall(&r.auto) - overall(&r.noise)
+    );
+    for (i, ch) in r.choices.iter().enumerate() {
+        let judged = match r.entry.category {
+            Category::Structured => format!(
+                "labelled {} top-3 {}",
+                yes_no(r.labelled(ch)),
+                yes_no(r.top3_labelled(ch))
+            ),
+            Category::Stochastic => {
+                format!("served {}", yes_no(Some(r.stochastic_ok(i))))
+            }
+        };
+        println!(
+            "  {:<12} {:<11} {judged:<22} top-3 {:<34} {:>7.0} ms",
+            ch.patch,
+            ch.chosen,
+            ch.top3.join(", "),
+            ch.analysis_ms
+        );
+    }
+}
+
+fn print_summary(s: &Summary, fold: Option<(usize, usize)>) {
+    println!();
+    match fold {
+        Some((k, f)) => println!("== summary of fold {k} of {f}"),
+        None => println!("== summary"),
+    }
+    let rate = |name: &str, r: &proctex::devset::Rate| {
+        println!(
+            "{name}: {}/{} = {:.0} % ± {:.0} % (standard error over photos)",
+            r.hits,
+            r.total,
+            100.0 * r.fraction(),
+            100.0 * r.standard_error
+        );
+    };
+    rate(
+        "structured patches, a labelled family chosen",
+        &s.structured_labelled,
+    );
+    rate(
+        "structured patches, a labelled family in the top three",
+        &s.structured_top3,
+    );
+    rate("stochastic patches served well", &s.stochastic_ok);
+    for (name, f) in [
+        ("structured", &s.structured_fidelity),
+        ("stochastic", &s.stochastic_fidelity),
+    ] {
+        println!(
+            "{name} photos ({}): overall ratio auto {:.3} ± {:.3}, noise {:.3} ± {:.3}; \
+             auto − noise {:+.3} ± {:.3}",
+            f.photos, f.auto.0, f.auto.1, f.noise.0, f.noise.1, f.difference.0, f.difference.1
+        );
+    }
+    for (side, ms) in &s.median_ms {
+        println!("median automatic analysis of a {side}² patch: {ms:.0} ms");
+    }
+    println!("confusion (labels → chosen: patches):");
+    for (label, cells) in &s.confusion {
+        let cells: Vec<String> = cells.iter().map(|(m, n)| format!("{m} {n}")).collect();
+        println!("  {label:<22} → {}", cells.join(", "));
+    }
+}

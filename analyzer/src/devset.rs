@@ -1,0 +1,430 @@
+//! The development set: real photos, each labelled with its category (structured or
+//! stochastic) and the pattern families a good match may use (`manifest.tsv`), and the
+//! yardstick that measures on them what a user sees: which model the automatic choice picks for
+//! each source patch of the fidelity protocol ([`crate::evaluate::fidelity`]), whether it is a
+//! labelled family, and how close the texture comes to the photo next to the noise model's.
+//!
+//! The yardstick only measures. Any constant chosen by looking at its numbers must be chosen by
+//! cross-validation: [`fold_of`] splits the photos into folds by a hash of their file names, so
+//! that the folds do not depend on the manifest's order or on which photos were added later.
+
+use crate::error::{Error, Result};
+use crate::evaluate::{Fidelity, SynthesisRun};
+use crate::pattern::PatternKind;
+
+/// What a photo shows: a structured material (joints, stones, planks) or a stochastic one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Category {
+    Structured,
+    Stochastic,
+}
+
+/// One photo of the set, as its manifest line says.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Entry {
+    /// File name, relative to the manifest's folder.
+    pub file: String,
+    pub category: Category,
+    /// What the photo shows, in words.
+    pub material: String,
+    /// The families a good match may use ("noise" for the noise model); `None` where the
+    /// manifest has no `families` column (the shipped samples' manifest).
+    pub families: Option<Vec<String>>,
+}
+
+/// Reads a manifest: tab-separated, a header line naming the columns (`file`, `category` and
+/// `material` are required, `families` optional, others ignored), one photo per line.
+pub fn parse_manifest(text: &str) -> Result<Vec<Entry>> {
+    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+    let header: Vec<&str> = lines
+        .next()
+        .ok_or_else(|| Error::Option("the manifest is empty".into()))?
+        .split('\t')
+        .map(str::trim)
+        .collect();
+    let column = |name: &str| header.iter().position(|h| *h == name);
+    let need = |name: &str| {
+        column(name).ok_or_else(|| {
+            Error::Option(format!(
+                "the manifest's header has no `{name}` column (it has: {})",
+                header.join(", ")
+            ))
+        })
+    };
+    let (file, category, material) = (need("file")?, need("category")?, need("material")?);
+    let families = column("families");
+    let mut out = Vec::new();
+    for (i, line) in lines.enumerate() {
+        let fields: Vec<&str> = line.split('\t').map(str::trim).collect();
+        let at = |c: usize| {
+            fields.get(c).copied().ok_or_else(|| {
+                Error::Option(format!(
+                    "manifest line {}: {} fields, the header has {}",
+                    i + 2,
+                    fields.len(),
+                    header.len()
+                ))
+            })
+        };
+        let category = match at(category)? {
+            "structured" => Category::Structured,
+            "stochastic" => Category::Stochastic,
+            other => {
+                return Err(Error::Option(format!(
+                    "manifest line {}: category `{other}` (structured or stochastic)",
+                    i + 2
+                )));
+            }
+        };
+        let families = match families {
+            Some(c) => {
+                let names: Vec<String> = at(c)?.split_whitespace().map(String::from).collect();
+                for n in &names {
+                    if n != "noise" && PatternKind::from_name(n).is_none() {
+                        return Err(Error::Option(format!(
+                            "manifest line {}: unknown family `{n}`",
+                            i + 2
+                        )));
+                    }
+                }
+                Some(names)
+            }
+            None => None,
+        };
+        out.push(Entry {
+            file: at(file)?.to_string(),
+            category,
+            material: at(material)?.to_string(),
+            families,
+        });
+    }
+    Ok(out)
+}
+
+/// The fold (0..`folds`) of a photo: FNV-1a of its file name, so that a photo's fold does not
+/// change when others are added or the manifest is reordered.
+pub fn fold_of(file: &str, folds: usize) -> usize {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in file.bytes() {
+        h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+    }
+    (h % folds.max(1) as u64) as usize
+}
+
+/// Names of the fidelity protocol's source patches, in [`Fidelity::per_patch`] order.
+pub const PATCHES: [&str; 4] = ["top-left", "bottom-left", "top-right", "bottom-right"];
+
+/// The automatic choice on one source patch (with the first seed).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PatchChoice {
+    /// [`PATCHES`] entry.
+    pub patch: &'static str,
+    /// The model chosen ("noise" or a family).
+    pub chosen: String,
+    /// The first three of the ranking.
+    pub top3: Vec<String>,
+    /// Wall time of the patch's automatic analysis, milliseconds.
+    pub analysis_ms: f64,
+}
+
+/// One photo measured: the choices, and the fidelity of the automatic choice and of the noise
+/// model alone (the same seeds).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PhotoResult {
+    pub entry: Entry,
+    pub choices: Vec<PatchChoice>,
+    pub auto: Fidelity,
+    pub noise: Fidelity,
+}
+
+/// The mean of a fidelity's three ratios (spectrum, colour, structure): one number per model
+/// and photo, 1 meaning as close as another patch of the same photo.
+pub fn overall(f: &Fidelity) -> f64 {
+    (f.spectrum_ratio + f.colour_ratio + f.structure_ratio) / 3.0
+}
+
+/// [`overall`] of one source patch's syntheses (their mean distances over the photo's).
+fn patch_overall(f: &Fidelity, patch: usize) -> f64 {
+    let d = f.per_patch[patch];
+    let h = f.halves;
+    (d.spectrum_db / h.spectrum_db.max(1e-9)
+        + d.colour / h.colour.max(1e-9)
+        + d.structure / h.structure.max(1e-9))
+        / 3.0
+}
+
+impl PhotoResult {
+    /// Measures one photo: `auto_run` runs the fidelity protocol with the automatic choice,
+    /// reporting each synthesis; `noise_run` with the noise model alone.
+    pub fn measure(
+        entry: Entry,
+        auto_run: impl FnOnce(&mut dyn FnMut(SynthesisRun)) -> Result<Fidelity>,
+        noise_run: impl FnOnce() -> Result<Fidelity>,
+    ) -> Result<PhotoResult> {
+        let mut choices: Vec<Option<PatchChoice>> = vec![None; PATCHES.len()];
+        let auto = auto_run(&mut |run: SynthesisRun| {
+            if choices[run.patch].is_none() {
+                let names: Vec<String> = run.ranking.iter().map(|s| s.name.to_string()).collect();
+                choices[run.patch] = Some(PatchChoice {
+                    patch: PATCHES[run.patch],
+                    chosen: names.first().cloned().unwrap_or_else(|| "noise".into()),
+                    top3: names.into_iter().take(3).collect(),
+                    analysis_ms: run.analysis_ms,
+                });
+            }
+        })?;
+        let noise = noise_run()?;
+        Ok(PhotoResult {
+            entry,
+            choices: choices.into_iter().flatten().collect(),
+            auto,
+            noise,
+        })
+    }
+
+    /// Whether the patch's choice is one of the labelled families (`None`: no labels).
+    pub fn labelled(&self, c: &PatchChoice) -> Option<bool> {
+        self.entry.families.as_ref().map(|f| f.contains(&c.chosen))
+    }
+
+    /// Whether a labelled family is among the patch's first three.
+    pub fn top3_labelled(&self, c: &PatchChoice) -> Option<bool> {
+        self.entry
+            .families
+            .as_ref()
+            .map(|f| c.top3.iter().any(|t| f.contains(t)))
+    }
+
+    /// A stochastic patch is served well when it keeps the noise model, or gets a family whose
+    /// texture is no farther from the photo than the noise model's.
+    pub fn stochastic_ok(&self, i: usize) -> bool {
+        self.choices[i].chosen == "noise"
+            || patch_overall(&self.auto, i) <= patch_overall(&self.noise, i)
+    }
+}
+
+/// A rate over patches with its standard error over photos (the patches of one photo are not
+/// independent: the photos are the samples).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Rate {
+    pub hits: usize,
+    pub total: usize,
+    /// Standard error of the rate: the spread of the per-photo rates over √photos.
+    pub standard_error: f64,
+}
+
+impl Rate {
+    fn of(per_photo: &[(usize, usize)]) -> Rate {
+        let hits = per_photo.iter().map(|p| p.0).sum();
+        let total = per_photo.iter().map(|p| p.1).sum();
+        let rates: Vec<f64> = per_photo
+            .iter()
+            .filter(|p| p.1 > 0)
+            .map(|p| p.0 as f64 / p.1 as f64)
+            .collect();
+        Rate {
+            hits,
+            total,
+            standard_error: mean_and_error(&rates).1,
+        }
+    }
+
+    pub fn fraction(&self) -> f64 {
+        self.hits as f64 / self.total.max(1) as f64
+    }
+}
+
+/// Mean and standard error (sample standard deviation over √n; 0 below two samples).
+pub fn mean_and_error(v: &[f64]) -> (f64, f64) {
+    let n = v.len() as f64;
+    if v.is_empty() {
+        return (0.0, 0.0);
+    }
+    let mean = v.iter().sum::<f64>() / n;
+    if v.len() < 2 {
+        return (mean, 0.0);
+    }
+    let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+/// Fidelity of one category's photos: mean [`overall`] ratios and their difference.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct FidelitySummary {
+    pub photos: usize,
+    /// Mean overall ratio of the automatic choice, and its standard error over photos.
+    pub auto: (f64, f64),
+    /// The same for the noise model alone.
+    pub noise: (f64, f64),
+    /// Mean of the per-photo differences auto − noise (negative: auto nearer) and its error.
+    pub difference: (f64, f64),
+}
+
+/// The whole set's numbers.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct Summary {
+    /// Structured patches whose choice is a labelled family.
+    pub structured_labelled: Rate,
+    /// Structured patches with a labelled family among the first three.
+    pub structured_top3: Rate,
+    /// Stochastic patches served well ([`PhotoResult::stochastic_ok`]).
+    pub stochastic_ok: Rate,
+    pub structured_fidelity: FidelitySummary,
+    pub stochastic_fidelity: FidelitySummary,
+    /// Median analysis time of a patch, per patch side (pixels), milliseconds.
+    pub median_ms: Vec<(u32, f64)>,
+    /// Label set ("brick/grid", "noise") → chosen model → patches.
+    pub confusion: Vec<(String, Vec<(String, usize)>)>,
+}
+
+impl Summary {
+    /// `sides[i]`: the patch side of `results[i]` (for the times).
+    pub fn of(results: &[PhotoResult], sides: &[u32]) -> Summary {
+        let mut s = Summary::default();
+        let count = |r: &PhotoResult, f: &dyn Fn(&PatchChoice) -> Option<bool>| {
+            let v: Vec<bool> = r.choices.iter().filter_map(f).collect();
+            (v.iter().filter(|&&x| x).count(), v.len())
+        };
+        let structured: Vec<&PhotoResult> = results
+            .iter()
+            .filter(|r| r.entry.category == Category::Structured)
+            .collect();
+        let stochastic: Vec<&PhotoResult> = results
+            .iter()
+            .filter(|r| r.entry.category == Category::Stochastic)
+            .collect();
+        s.structured_labelled = Rate::of(
+            &structured
+                .iter()
+                .map(|r| count(r, &|c| r.labelled(c)))
+                .collect::<Vec<_>>(),
+        );
+        s.structured_top3 = Rate::of(
+            &structured
+                .iter()
+                .map(|r| count(r, &|c| r.top3_labelled(c)))
+                .collect::<Vec<_>>(),
+        );
+        s.stochastic_ok = Rate::of(
+            &stochastic
+                .iter()
+                .map(|r| {
+                    let ok = (0..r.choices.len()).filter(|&i| r.stochastic_ok(i)).count();
+                    (ok, r.choices.len())
+                })
+                .collect::<Vec<_>>(),
+        );
+        let fid = |set: &[&PhotoResult]| {
+            let a: Vec<f64> = set.iter().map(|r| overall(&r.auto)).collect();
+            let n: Vec<f64> = set.iter().map(|r| overall(&r.noise)).collect();
+            let d: Vec<f64> = a.iter().zip(&n).map(|(x, y)| x - y).collect();
+            FidelitySummary {
+                photos: set.len(),
+                auto: mean_and_error(&a),
+                noise: mean_and_error(&n),
+                difference: mean_and_error(&d),
+            }
+        };
+        s.structured_fidelity = fid(&structured);
+        s.stochastic_fidelity = fid(&stochastic);
+        let mut by_side: Vec<(u32, Vec<f64>)> = Vec::new();
+        for (r, &side) in results.iter().zip(sides) {
+            let times = r.choices.iter().map(|c| c.analysis_ms);
+            match by_side.iter_mut().find(|(s, _)| *s == side) {
+                Some((_, v)) => v.extend(times),
+                None => by_side.push((side, times.collect())),
+            }
+        }
+        by_side.sort_by_key(|(side, _)| *side);
+        s.median_ms = by_side
+            .into_iter()
+            .map(|(side, mut v)| {
+                v.sort_by(f64::total_cmp);
+                (side, v[v.len() / 2])
+            })
+            .collect();
+        for r in results {
+            let label = match &r.entry.families {
+                Some(f) => f.join("/"),
+                None => format!("({:?})", r.entry.category).to_lowercase(),
+            };
+            let row = match s.confusion.iter().position(|(l, _)| *l == label) {
+                Some(i) => i,
+                None => {
+                    s.confusion.push((label, Vec::new()));
+                    s.confusion.len() - 1
+                }
+            };
+            for c in &r.choices {
+                let cells = &mut s.confusion[row].1;
+                match cells.iter_mut().find(|(m, _)| *m == c.chosen) {
+                    Some((_, n)) => *n += 1,
+                    None => cells.push((c.chosen.clone(), 1)),
+                }
+            }
+        }
+        s.confusion.sort_by(|a, b| a.0.cmp(&b.0));
+        s
+    }
+}
+
+/// A fidelity's ratios for tables: spectrum, colour, structure, overall.
+pub fn ratios(f: &Fidelity) -> [f64; 4] {
+    [
+        f.spectrum_ratio,
+        f.colour_ratio,
+        f.structure_ratio,
+        overall(f),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn manifest_with_and_without_families() {
+        let dev = "file\tcategory\tmaterial\tfamilies\tlicense\n\
+                   a.png\tstructured\tbrick wall\tbrick grid\tCC0\n\
+                   b.png\tstochastic\tsand\tnoise\tCC0\n";
+        let e = parse_manifest(dev).unwrap();
+        assert_eq!(e.len(), 2);
+        assert_eq!(e[0].category, Category::Structured);
+        assert_eq!(e[0].families.as_deref().unwrap(), ["brick", "grid"]);
+        assert_eq!(e[1].material, "sand");
+        let shipped = "file\tcategory\tmaterial\tlicense\nc.png\tstochastic\tgravel\tCC0\n";
+        assert!(parse_manifest(shipped).unwrap()[0].families.is_none());
+        for bad in [
+            "",
+            "file\tmaterial\na.png\tx\n",
+            "file\tcategory\tmaterial\na.png\tsoft\tx\n",
+            "file\tcategory\tmaterial\tfamilies\na.png\tstructured\tx\tbricks\n",
+            "file\tcategory\tmaterial\na.png\tstructured\n",
+        ] {
+            assert!(parse_manifest(bad).is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn folds_are_stable_and_spread() {
+        let names: Vec<String> = (0..200).map(|i| format!("photo_{i}.png")).collect();
+        let mut counts = [0usize; 4];
+        for n in &names {
+            let f = fold_of(n, 4);
+            assert_eq!(f, fold_of(n, 4));
+            counts[f] += 1;
+        }
+        assert!(counts.iter().all(|&c| (30..=70).contains(&c)), "{counts:?}");
+    }
+
+    #[test]
+    fn rates_and_errors_count_photos_as_the_samples() {
+        let r = Rate::of(&[(4, 4), (0, 4), (2, 4)]);
+        assert_eq!((r.hits, r.total), (6, 12));
+        assert!((r.fraction() - 0.5).abs() < 1e-12);
+        // Per-photo rates 1, 0, 0.5: sd 0.5, over √3.
+        assert!((r.standard_error - 0.5 / 3f64.sqrt()).abs() < 1e-12);
+        assert_eq!(mean_and_error(&[2.0]), (2.0, 0.0));
+    }
+}
