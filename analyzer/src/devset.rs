@@ -235,6 +235,15 @@ impl Rate {
     }
 }
 
+/// The median of sorted values (0 for none).
+fn median(sorted: &[f64]) -> f64 {
+    match sorted.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => sorted[n / 2],
+        n => 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]),
+    }
+}
+
 /// Mean and standard error (sample standard deviation over √n; 0 below two samples).
 pub fn mean_and_error(v: &[f64]) -> (f64, f64) {
     let n = v.len() as f64;
@@ -252,13 +261,29 @@ pub fn mean_and_error(v: &[f64]) -> (f64, f64) {
 /// Fidelity of one category's photos: mean [`overall`] ratios and their difference.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
 pub struct FidelitySummary {
+    /// Photos whose fidelity is defined ([`defined`]), the ones summarised.
     pub photos: usize,
+    /// Photos left out: their paired quadrants are the same pixels ([`defined`]).
+    pub undefined: usize,
     /// Mean overall ratio of the automatic choice, and its standard error over photos.
     pub auto: (f64, f64),
     /// The same for the noise model alone.
     pub noise: (f64, f64),
     /// Mean of the per-photo differences auto − noise (negative: auto nearer) and its error.
     pub difference: (f64, f64),
+    /// Median of the per-photo differences: the mean is dominated by tiled photos whose
+    /// paired quadrants are near copies (a small `d(A, B)` makes every ratio large).
+    pub median_difference: f64,
+    /// Mean of ln(auto / noise) per photo and its error: the same comparison independent of
+    /// each photo's own scale (−0.1: auto about 10 % nearer).
+    pub log_ratio: (f64, f64),
+}
+
+/// Whether a photo's fidelity is defined: the patches of each pair differ. Some tiles repeat
+/// with half the photo's period, so that the top and bottom quadrants are the same pixels and
+/// every ratio divides by zero (the wood grain of the development set).
+pub fn defined(f: &Fidelity) -> bool {
+    f.halves.spectrum_db > 1e-6 && f.halves.colour > 1e-9 && f.halves.structure > 1e-6
 }
 
 /// The whole set's numbers.
@@ -316,14 +341,21 @@ impl Summary {
                 .collect::<Vec<_>>(),
         );
         let fid = |set: &[&PhotoResult]| {
-            let a: Vec<f64> = set.iter().map(|r| overall(&r.auto)).collect();
-            let n: Vec<f64> = set.iter().map(|r| overall(&r.noise)).collect();
-            let d: Vec<f64> = a.iter().zip(&n).map(|(x, y)| x - y).collect();
+            let kept: Vec<&&PhotoResult> = set.iter().filter(|r| defined(&r.noise)).collect();
+            let a: Vec<f64> = kept.iter().map(|r| overall(&r.auto)).collect();
+            let n: Vec<f64> = kept.iter().map(|r| overall(&r.noise)).collect();
+            let mut d: Vec<f64> = a.iter().zip(&n).map(|(x, y)| x - y).collect();
+            let logs: Vec<f64> = a.iter().zip(&n).map(|(x, y)| (x / y).ln()).collect();
+            let difference = mean_and_error(&d);
+            d.sort_by(f64::total_cmp);
             FidelitySummary {
-                photos: set.len(),
+                photos: kept.len(),
+                undefined: set.len() - kept.len(),
                 auto: mean_and_error(&a),
                 noise: mean_and_error(&n),
-                difference: mean_and_error(&d),
+                difference,
+                median_difference: median(&d),
+                log_ratio: mean_and_error(&logs),
             }
         };
         s.structured_fidelity = fid(&structured);
@@ -416,6 +448,93 @@ mod tests {
             counts[f] += 1;
         }
         assert!(counts.iter().all(|&c| (30..=70).contains(&c)), "{counts:?}");
+    }
+
+    fn fidelity(halves: f64, ratio: f64) -> Fidelity {
+        let d = |v: f64| crate::evaluate::Distances {
+            spectrum_db: v,
+            colour: v,
+            structure: v,
+        };
+        Fidelity {
+            halves: d(halves),
+            synthesis: d(halves * ratio),
+            spectrum_ratio: ratio,
+            colour_ratio: ratio,
+            structure_ratio: ratio,
+            floor: d(0.0),
+            floor_spectrum_ratio: 0.0,
+            floor_colour_ratio: 0.0,
+            floor_structure_ratio: 0.0,
+            per_patch: [d(halves * ratio); 4],
+            repeat: false,
+        }
+    }
+
+    fn result(file: &str, category: Category, chosen: &str, auto: f64, noise: f64) -> PhotoResult {
+        let halves = if auto.is_finite() { 1.0 } else { 0.0 };
+        PhotoResult {
+            entry: Entry {
+                file: file.into(),
+                category,
+                material: "m".into(),
+                families: Some(vec![if category == Category::Structured {
+                    "brick".into()
+                } else {
+                    "noise".into()
+                }]),
+            },
+            choices: PATCHES
+                .iter()
+                .map(|p| PatchChoice {
+                    patch: p,
+                    chosen: chosen.into(),
+                    top3: vec![chosen.into(), "brick".into(), "noise".into()],
+                    analysis_ms: 100.0,
+                })
+                .collect(),
+            auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),
+            noise: fidelity(halves, if noise.is_finite() { noise } else { 1e9 }),
+        }
+    }
+
+    #[test]
+    fn the_summary_counts_labels_and_leaves_out_undefined_fidelity() {
+        let results = [
+            result("a.png", Category::Structured, "brick", 1.2, 1.5),
+            result("b.png", Category::Structured, "grid", 1.4, 1.4),
+            // Paired quadrants with the same pixels: no fidelity, still a choice.
+            result(
+                "c.png",
+                Category::Structured,
+                "brick",
+                f64::INFINITY,
+                f64::INFINITY,
+            ),
+            result("d.png", Category::Stochastic, "noise", 1.1, 1.1),
+            // A family on a stochastic photo, farther than the noise model: not served well.
+            result("e.png", Category::Stochastic, "ridged", 1.3, 1.2),
+        ];
+        let s = Summary::of(&results, &[128; 5]);
+        assert_eq!(
+            (s.structured_labelled.hits, s.structured_labelled.total),
+            (8, 12)
+        );
+        assert_eq!(s.structured_top3.hits, 12);
+        assert_eq!((s.stochastic_ok.hits, s.stochastic_ok.total), (4, 8));
+        let f = s.structured_fidelity;
+        assert_eq!((f.photos, f.undefined), (2, 1));
+        assert!((f.difference.0 - (-0.15)).abs() < 1e-9, "{f:?}");
+        assert!((f.median_difference - (-0.15)).abs() < 1e-9, "{f:?}");
+        assert!(
+            (f.log_ratio.0 - 0.5 * (1.2f64 / 1.5).ln()).abs() < 1e-9,
+            "{f:?}"
+        );
+        assert_eq!(s.median_ms, vec![(128, 100.0)]);
+        let brick = &s.confusion.iter().find(|(l, _)| l == "brick").unwrap().1;
+        assert!(
+            brick.contains(&("brick".to_string(), 8)) && brick.contains(&("grid".to_string(), 4))
+        );
     }
 
     #[test]

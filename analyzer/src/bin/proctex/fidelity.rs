@@ -4,7 +4,9 @@
 use std::path::Path;
 
 use proctex::analyze::Options;
-use proctex::devset::{Category, PhotoResult, Summary, fold_of, overall, parse_manifest, ratios};
+use proctex::devset::{
+    Category, PhotoResult, Summary, defined, fold_of, overall, parse_manifest, ratios,
+};
 use proctex::evaluate::{fidelity, fidelity_observed, ratio_difference};
 use proctex::retrieve::{ModelChoice, Refinement};
 use proctex::{Error, Result};
@@ -244,7 +246,9 @@ fn print_photo(r: &PhotoResult) {
         "{} ({category}: {}; labels {labels}){}",
         r.entry.file,
         r.entry.material,
-        if r.auto.repeat {
+        if !defined(&r.noise) {
+            "; fidelity undefined: its paired quadrants are the same pixels"
+        } else if r.auto.repeat {
             "; its quadrants repeat"
         } else {
             ""
@@ -306,9 +310,24 @@ fn print_summary(s: &Summary, fold: Option<(usize, usize)>) {
     ] {
         println!(
             "{name} photos ({}): overall ratio auto {:.3} ± {:.3}, noise {:.3} ± {:.3}; \
-             auto − noise {:+.3} ± {:.3}",
-            f.photos, f.auto.0, f.auto.1, f.noise.0, f.noise.1, f.difference.0, f.difference.1
+             auto − noise {:+.3} ± {:.3} (median {:+.3}); mean ln(auto/noise) {:+.3} ± {:.3}",
+            f.photos,
+            f.auto.0,
+            f.auto.1,
+            f.noise.0,
+            f.noise.1,
+            f.difference.0,
+            f.difference.1,
+            f.median_difference,
+            f.log_ratio.0,
+            f.log_ratio.1
         );
+        if f.undefined > 0 {
+            println!(
+                "  {} {name} photo(s) left out: paired quadrants with the same pixels (d(A,B) = 0)",
+                f.undefined
+            );
+        }
     }
     for (side, ms) in &s.median_ms {
         println!("median automatic analysis of a {side}² patch: {ms:.0} ms");
