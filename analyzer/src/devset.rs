@@ -126,6 +126,22 @@ pub struct PatchChoice {
     pub top3: Vec<String>,
     /// Wall time of the patch's automatic analysis, milliseconds.
     pub analysis_ms: f64,
+    /// The whole ranking's numbers, nearest first: what choosing the ranking's constants
+    /// again needs without analysing again (the ranking is a function of these).
+    pub ranking: Vec<Candidate>,
+}
+
+/// One candidate of a patch's ranking (a [`crate::retrieve::Suggestion`]'s numbers).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Candidate {
+    pub name: String,
+    /// Texture distance of the fitted candidate to the patch.
+    pub distance: f32,
+    /// The ranking key.
+    pub score: f32,
+    /// Structure distance by retrieval (0 for the noise model) and after refinement.
+    pub retrieval: f32,
+    pub refined: Option<f32>,
 }
 
 /// One photo measured: the choices, and the fidelity of the automatic choice and of the noise
@@ -171,6 +187,17 @@ impl PhotoResult {
                     chosen: names.first().cloned().unwrap_or_else(|| "noise".into()),
                     top3: names.into_iter().take(3).collect(),
                     analysis_ms: run.analysis_ms,
+                    ranking: run
+                        .ranking
+                        .iter()
+                        .map(|c| Candidate {
+                            name: c.name.to_string(),
+                            distance: c.distance,
+                            score: c.score,
+                            retrieval: c.retrieval_distance,
+                            refined: c.refined_distance,
+                        })
+                        .collect(),
                 });
             }
         })?;
@@ -491,6 +518,7 @@ mod tests {
                     chosen: chosen.into(),
                     top3: vec![chosen.into(), "brick".into(), "noise".into()],
                     analysis_ms: 100.0,
+                    ranking: Vec::new(),
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

@@ -259,6 +259,8 @@ fn the_dev_set_yardstick_tabulates_choices_and_fidelity() {
     assert_eq!(photo["entry"]["file"], "rock.png");
     assert_eq!(photo["choices"].as_array().unwrap().len(), 4);
     assert_eq!(photo["choices"][0]["top3"].as_array().unwrap().len(), 3);
+    // The whole ranking's numbers (noise and the nine families), for offline re-ranking.
+    assert_eq!(photo["choices"][0]["ranking"].as_array().unwrap().len(), 10);
     assert!(photo["auto"]["spectrum_ratio"].as_f64().unwrap() > 0.0);
     let summary = &lines[1]["summary"];
     assert_eq!(summary["stochastic_ok"]["total"], 4);
