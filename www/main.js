@@ -104,6 +104,12 @@ async function loadImage(bytes, name = 'image', { suggest = true } = {}) {
   return analysePhoto({ type: 'open', bytes: copy, name, suggest }, [copy.buffer], name);
 }
 
+// The built-in sample shown at start-up (and in the no-WebGPU fallback): its suggestions wait
+// for the "Suggest models" click.
+async function loadStartupSample() {
+  return loadImage(await fetchBytes(`samples/${DEFAULT_SAMPLE}`), DEFAULT_SAMPLE, { suggest: false });
+}
+
 async function loadPixels(rgba, width, height, name) {
   const copy = new Uint8Array(rgba);
   return analysePhoto({ type: 'pixels', rgba: copy, width, height, name }, [copy.buffer], name);
@@ -464,8 +470,7 @@ async function cpuFallback(reason) {
     'Safari 26+, or Firefox with WebGPU enabled.\nBelow: the CPU reference rendering of the ' +
     `sample (${DEFAULT_SAMPLE}), analysed in this page.`, true);
   document.getElementById('proctex_canvas').style.display = 'none';
-  const ok = await loadImage(await fetchBytes(`samples/${DEFAULT_SAMPLE}`), DEFAULT_SAMPLE,
-    { suggest: false });
+  const ok = await loadStartupSample();
   if (!ok) return;
   const params = JSON.stringify(JSON.parse(lastReport).params);
   const size = 384;
@@ -506,7 +511,7 @@ async function main() {
     }
   }, 500);
   installPhotoInputs();
-  await loadImage(await fetchBytes(`samples/${DEFAULT_SAMPLE}`), DEFAULT_SAMPLE, { suggest: false });
+  await loadStartupSample();
   // A share link: the texture in the fragment replaces the sample's params.
   if (location.hash.startsWith('#p=')) {
     let text = null;
