@@ -129,6 +129,22 @@ pub struct PatchChoice {
     /// The whole ranking's numbers, nearest first: what choosing the ranking's constants
     /// again needs without analysing again (the ranking is a function of these).
     pub ranking: Vec<Candidate>,
+    /// Speck fractions ([`crate::evaluate::speck_fraction`]) of the source patch and of the
+    /// synthesis of the chosen model; the patch's pixel count (for [`speck_ratio`]).
+    pub photo_specks: f64,
+    pub render_specks: f64,
+    pub pixels: usize,
+}
+
+/// Most specks a render may have, in units of its photo's own ([`speck_ratio`]).
+pub const SPECK_LIMIT: f64 = 1.5;
+
+/// A render's speck fraction over its photo's, each with one pixel added (a photo without
+/// specks does not divide by zero, and one speck pixel in a render of a speckless photo is
+/// a ratio of 2, not infinity).
+pub fn speck_ratio(render: f64, photo: f64, pixels: usize) -> f64 {
+    let one = 1.0 / pixels.max(1) as f64;
+    (render + one) / (photo + one)
 }
 
 /// One candidate of a patch's ranking (a [`crate::retrieve::Suggestion`]'s numbers).
@@ -142,6 +158,9 @@ pub struct Candidate {
     /// Structure distance by retrieval (0 for the noise model) and after refinement.
     pub retrieval: f32,
     pub refined: Option<f32>,
+    /// Speck fraction of the candidate as fitted for the ranking, rendered at the patch's size
+    /// with the patch's seed.
+    pub specks: f64,
 }
 
 /// One photo measured: the choices, and the fidelity of the automatic choice and of the noise
@@ -181,6 +200,7 @@ impl PhotoResult {
         let mut choices: Vec<Option<PatchChoice>> = vec![None; PATCHES.len()];
         let auto = auto_run(&mut |run: SynthesisRun| {
             if choices[run.patch].is_none() {
+                use crate::evaluate::{render_params_at_photo_size, speck_fraction};
                 let names: Vec<String> = run.ranking.iter().map(|s| s.name.to_string()).collect();
                 choices[run.patch] = Some(PatchChoice {
                     patch: PATCHES[run.patch],
@@ -196,8 +216,14 @@ impl PhotoResult {
                             score: c.score,
                             retrieval: c.retrieval_distance,
                             refined: c.refined_distance,
+                            specks: speck_fraction(&render_params_at_photo_size(
+                                &c.preview, run.source,
+                            )),
                         })
                         .collect(),
+                    photo_specks: speck_fraction(run.source),
+                    render_specks: speck_fraction(run.synthesis),
+                    pixels: run.source.pixels.len(),
                 });
             }
         })?;
@@ -328,6 +354,22 @@ pub struct Summary {
     pub median_ms: Vec<(u32, f64)>,
     /// Label set ("brick/grid", "noise") → chosen model → patches.
     pub confusion: Vec<(String, Vec<(String, usize)>)>,
+    /// Patches whose chosen model's synthesis keeps within [`SPECK_LIMIT`] of the photo's
+    /// specks.
+    pub specks_clean: Rate,
+    /// Per model (noise and each family, every patch's fitted candidate): renders, renders past
+    /// [`SPECK_LIMIT`], the median and the largest [`speck_ratio`].
+    pub specks_by_model: Vec<SpeckRow>,
+}
+
+/// One model's speck numbers over the set ([`Summary::specks_by_model`]).
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct SpeckRow {
+    pub model: String,
+    pub renders: usize,
+    pub over_limit: usize,
+    pub median_ratio: f64,
+    pub max_ratio: f64,
 }
 
 impl Summary {
@@ -424,6 +466,45 @@ impl Summary {
             }
         }
         s.confusion.sort_by(|a, b| a.0.cmp(&b.0));
+        s.specks_clean = Rate::of(
+            &results
+                .iter()
+                .map(|r| {
+                    let clean = r
+                        .choices
+                        .iter()
+                        .filter(|c| {
+                            speck_ratio(c.render_specks, c.photo_specks, c.pixels) <= SPECK_LIMIT
+                        })
+                        .count();
+                    (clean, r.choices.len())
+                })
+                .collect::<Vec<_>>(),
+        );
+        let mut by_model: Vec<(String, Vec<f64>)> = Vec::new();
+        for c in results.iter().flat_map(|r| &r.choices) {
+            for k in &c.ranking {
+                let ratio = speck_ratio(k.specks, c.photo_specks, c.pixels);
+                match by_model.iter_mut().find(|(m, _)| *m == k.name) {
+                    Some((_, v)) => v.push(ratio),
+                    None => by_model.push((k.name.clone(), vec![ratio])),
+                }
+            }
+        }
+        by_model.sort_by(|a, b| a.0.cmp(&b.0));
+        s.specks_by_model = by_model
+            .into_iter()
+            .map(|(model, mut v)| {
+                v.sort_by(f64::total_cmp);
+                SpeckRow {
+                    model,
+                    renders: v.len(),
+                    over_limit: v.iter().filter(|&&x| x > SPECK_LIMIT).count(),
+                    median_ratio: median(&v),
+                    max_ratio: v.last().copied().unwrap_or(0.0),
+                }
+            })
+            .collect();
         s
     }
 }
@@ -518,7 +599,23 @@ mod tests {
                     chosen: chosen.into(),
                     top3: vec![chosen.into(), "brick".into(), "noise".into()],
                     analysis_ms: 100.0,
-                    ranking: Vec::new(),
+                    ranking: vec![Candidate {
+                        name: chosen.into(),
+                        distance: 1.0,
+                        score: 1.0,
+                        retrieval: 1.0,
+                        refined: None,
+                        // 2.5× the photo's specks on the structured photos' candidates.
+                        specks: if category == Category::Structured {
+                            0.01
+                        } else {
+                            0.004
+                        },
+                    }],
+                    photo_specks: 0.004,
+                    // The chosen synthesis: past the limit on the first photo only.
+                    render_specks: if file == "a.png" { 0.01 } else { 0.004 },
+                    pixels: 10_000,
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),
@@ -563,6 +660,13 @@ mod tests {
         assert!(
             brick.contains(&("brick".to_string(), 8)) && brick.contains(&("grid".to_string(), 4))
         );
+        assert_eq!((s.specks_clean.hits, s.specks_clean.total), (16, 20));
+        let row = |m: &str| s.specks_by_model.iter().find(|r| r.model == m).unwrap();
+        let brick = row("brick");
+        assert_eq!((brick.renders, brick.over_limit), (8, 8));
+        assert!((brick.max_ratio - 101.0 / 41.0).abs() < 1e-9, "{brick:?}");
+        assert_eq!((row("noise").renders, row("noise").over_limit), (4, 0));
+        assert!((row("noise").median_ratio - 1.0).abs() < 1e-12);
     }
 
     #[test]

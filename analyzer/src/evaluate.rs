@@ -118,20 +118,44 @@ fn directions() -> Vec<[f32; 3]> {
 
 /// Sliced Wasserstein-1 distance between the colour distributions of `a` and `b`.
 pub fn colour_distance(a: &Photo, b: &Photo) -> f64 {
-    let dirs = directions();
-    let mut total = 0.0;
-    for d in &dirs {
-        let proj = |p: &Photo| -> Vec<f32> {
-            p.pixels
+    ColourQuantiles::of(a).distance(&ColourQuantiles::of(b))
+}
+
+/// The quantile functions of an image's colours projected on [`colour_distance`]'s directions:
+/// what the distance compares, computed once for an image compared many times.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ColourQuantiles(Vec<Vec<f64>>);
+
+impl ColourQuantiles {
+    /// The quantiles of `p`.
+    pub fn of(p: &Photo) -> ColourQuantiles {
+        ColourQuantiles(
+            directions()
                 .iter()
-                .map(|c| c[0] * d[0] + c[1] * d[1] + c[2] * d[2])
-                .collect()
-        };
-        let qa = quantiles(proj(a), 512);
-        let qb = quantiles(proj(b), 512);
-        total += qa.iter().zip(&qb).map(|(x, y)| (x - y).abs()).sum::<f64>() / qa.len() as f64;
+                .map(|d| {
+                    let proj: Vec<f32> = p
+                        .pixels
+                        .iter()
+                        .map(|c| c[0] * d[0] + c[1] * d[1] + c[2] * d[2])
+                        .collect();
+                    quantiles(proj, 512)
+                })
+                .collect(),
+        )
     }
-    total / dirs.len() as f64
+
+    /// [`colour_distance`] between the two images these quantiles came from.
+    pub fn distance(&self, other: &ColourQuantiles) -> f64 {
+        let total: f64 = self
+            .0
+            .iter()
+            .zip(&other.0)
+            .map(|(qa, qb)| {
+                qa.iter().zip(qb).map(|(x, y)| (x - y).abs()).sum::<f64>() / qa.len() as f64
+            })
+            .sum();
+        total / self.0.len() as f64
+    }
 }
 
 /// The structure distance: the weighted distance ([`Db::distance`] of the shipped database)
@@ -146,15 +170,66 @@ pub fn structure_distance(a: &Photo, b: &Photo) -> f64 {
 /// [`structure_distance`] with the weights of `db` (the browser loads the database file
 /// rather than embedding it in the wasm).
 pub fn structure_distance_with(db: &Db, a: &Photo, b: &Photo) -> f64 {
-    let describe_lum = |p: &Photo| {
-        let lum: Vec<f32> = p
-            .pixels
-            .iter()
-            .map(|c| 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2])
-            .collect();
-        describe(&descriptor_image(&lum, p.width as usize, p.height as usize))
-    };
-    db.distance(&describe_lum(a), &describe_lum(b)) as f64
+    db.distance(&describe_luminance(a), &describe_luminance(b)) as f64
+}
+
+/// The descriptor [`structure_distance`] compares: of the luminance's centre square.
+fn describe_luminance(p: &Photo) -> crate::gabor::Descriptor {
+    let lum: Vec<f32> = p
+        .pixels
+        .iter()
+        .map(|c| 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2])
+        .collect();
+    describe(&descriptor_image(&lum, p.width as usize, p.height as usize))
+}
+
+/// What [`distances`] needs of an image that many others are compared with (a photo that
+/// candidate renders are scored against): its radial spectrum, colour quantiles and
+/// descriptor, computed once. [`Reference::distances`] gives bit for bit what
+/// [`distances_with`] does.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    spectrum: Vec<f64>,
+    colour: ColourQuantiles,
+    descriptor: crate::gabor::Descriptor,
+}
+
+impl Reference {
+    /// The reference of `p`.
+    pub fn of(p: &Photo) -> Reference {
+        Reference {
+            spectrum: radial_spectrum(p),
+            colour: ColourQuantiles::of(p),
+            descriptor: describe_luminance(p),
+        }
+    }
+
+    /// `distances_with(db, a, reference's image)`.
+    pub fn distances(&self, db: &Db, a: &Photo) -> Distances {
+        Distances {
+            spectrum_db: spectrum_distance(&radial_spectrum(a), &self.spectrum),
+            colour: ColourQuantiles::of(a).distance(&self.colour),
+            structure: db.distance(&describe_luminance(a), &self.descriptor) as f64,
+        }
+    }
+}
+
+/// RMS difference in dB of two radial spectra, over the rings where either has power.
+fn spectrum_distance(sa: &[f64], sb: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    let mut count = 0;
+    for (x, y) in sa.iter().zip(sb) {
+        if *x > 0.0 || *y > 0.0 {
+            let d = 10.0 * ((x + 1e-12).log10() - (y + 1e-12).log10());
+            sum += d * d;
+            count += 1;
+        }
+    }
+    if count > 0 {
+        (sum / count as f64).sqrt()
+    } else {
+        0.0
+    }
 }
 
 /// The three distances.
@@ -164,22 +239,8 @@ pub fn distances(a: &Photo, b: &Photo) -> Distances {
 
 /// [`distances`] with the structure distance weighted by `db`.
 pub fn distances_with(db: &Db, a: &Photo, b: &Photo) -> Distances {
-    let (sa, sb) = (radial_spectrum(a), radial_spectrum(b));
-    let mut sum = 0.0;
-    let mut count = 0;
-    for (x, y) in sa.iter().zip(&sb) {
-        if *x > 0.0 || *y > 0.0 {
-            let d = 10.0 * ((x + 1e-12).log10() - (y + 1e-12).log10());
-            sum += d * d;
-            count += 1;
-        }
-    }
     Distances {
-        spectrum_db: if count > 0 {
-            (sum / count as f64).sqrt()
-        } else {
-            0.0
-        },
+        spectrum_db: spectrum_distance(&radial_spectrum(a), &radial_spectrum(b)),
         colour: colour_distance(a, b),
         structure: structure_distance_with(db, a, b),
     }
@@ -341,9 +402,15 @@ pub fn synthesize_model_progress(
 
 /// The analysis' texture rendered at exactly the photo's pixel size.
 fn render_at_photo_size(a: &Analysis, photo: &Photo) -> Photo {
+    render_params_at_photo_size(&a.params, photo)
+}
+
+/// `params` rendered over `photo`'s pixels, one world unit per pixel (as the fidelity
+/// protocol's syntheses are).
+pub fn render_params_at_photo_size(params: &crate::params::Params, photo: &Photo) -> Photo {
     let world_per_pixel = 1.0; // world units are photo pixels
     render(
-        &a.params,
+        params,
         photo.width,
         photo.height,
         &View {
@@ -414,6 +481,89 @@ pub fn fidelity(
     fidelity_observed(photo, opts, choice, refinement, seeds, &mut |_| {})
 }
 
+/// Robust deviations past which a pixel stands out from a neighbour ([`speck_fraction`]).
+pub const SPECK_DEVIATIONS: f32 = 4.0;
+
+/// The fraction of `p`'s pixels that are specks: isolated outliers, brighter (or darker) in
+/// some RGB channel than all its 8 neighbours but at most one by more than
+/// [`SPECK_DEVIATIONS`] robust deviations. The robust deviation of a channel is 1.4826 × the
+/// median absolute difference of its pixels from their 3×3 neighbourhoods' medians (the
+/// standard deviation, were those differences Gaussian), each image its own: the measure
+/// counts isolated outliers against the image's own fine texture, not a render that is merely
+/// grainier.
+///
+/// Departure from the plain "farther than 4 deviations from the 3×3 median": in a clean,
+/// piecewise flat render (a pattern's ramp alone) the deviation is a quantum, and every pixel
+/// of a joint one pixel wide is that far from its median (six of its nine neighbours are
+/// brick), so the plain measure counted the joints: 12–43 % of the ramp-alone renders of
+/// brick, cells and planks on the development set. A pixel of a line has two neighbours like
+/// it; a speck has none, or one (a speck of two pixels).
+///
+/// Values are quantised to 1/255 first, as an exported 8-bit image is (a render's sub-quantum
+/// wobble is no speck), and the deviation is at least one quantum. Border pixels are not
+/// judged (a line that leaves the image would look like one), only counted in the fraction's
+/// denominator.
+pub fn speck_fraction(p: &Photo) -> f64 {
+    let (w, h) = (p.width as usize, p.height as usize);
+    if w < 3 || h < 3 {
+        return 0.0;
+    }
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round();
+    let neighbours = |x: usize, y: usize| {
+        let mut out = [(0usize, 0usize); 8];
+        let mut k = 0;
+        for yy in y.saturating_sub(1)..(y + 2).min(h) {
+            for xx in x.saturating_sub(1)..(x + 2).min(w) {
+                if (xx, yy) != (x, y) {
+                    out[k] = (xx, yy);
+                    k += 1;
+                }
+            }
+        }
+        (out, k)
+    };
+    let mut speck = vec![false; w * h];
+    for c in 0..3 {
+        let v: Vec<f32> = p.pixels.iter().map(|px| q(px[c])).collect();
+        let mut diff = Vec::with_capacity(w * h);
+        for y in 0..h {
+            for x in 0..w {
+                let (nb, k) = neighbours(x, y);
+                let mut n = [0.0f32; 9];
+                n[0] = v[y * w + x];
+                for (i, &(xx, yy)) in nb[..k].iter().enumerate() {
+                    n[i + 1] = v[yy * w + xx];
+                }
+                let n = &mut n[..=k];
+                n.sort_unstable_by(f32::total_cmp);
+                let m = n.len();
+                let median = if m % 2 == 1 {
+                    n[m / 2]
+                } else {
+                    0.5 * (n[m / 2 - 1] + n[m / 2])
+                };
+                diff.push((v[y * w + x] - median).abs());
+            }
+        }
+        diff.sort_unstable_by(f32::total_cmp);
+        let threshold = SPECK_DEVIATIONS * (1.4826 * diff[diff.len() / 2]).max(1.0);
+        for y in 1..h - 1 {
+            for x in 1..w - 1 {
+                let here = v[y * w + x];
+                let (nb, k) = neighbours(x, y);
+                let (mut above, mut below) = (0, 0);
+                for &(xx, yy) in &nb[..k] {
+                    let d = here - v[yy * w + xx];
+                    above += (d > threshold) as usize;
+                    below += (d < -threshold) as usize;
+                }
+                speck[y * w + x] |= above + 1 >= k || below + 1 >= k;
+            }
+        }
+    }
+    speck.iter().filter(|&&s| s).count() as f64 / (w * h) as f64
+}
+
 /// One synthesis of the fidelity protocol, as [`fidelity_observed`] reports it.
 #[derive(Debug)]
 pub struct SynthesisRun<'a> {
@@ -428,6 +578,9 @@ pub struct SynthesisRun<'a> {
     pub analysis_ms: f64,
     /// The synthesis' distances to the other patch of its pair.
     pub distances: Distances,
+    /// The source patch and the synthesis (rendered at the patch's size).
+    pub source: &'a Photo,
+    pub synthesis: &'a Photo,
 }
 
 /// [`fidelity`], reporting every synthesis to `observe` as it is made (which model each source
@@ -465,6 +618,8 @@ pub fn fidelity_observed(
                     ranking: &ranking,
                     analysis_ms,
                     distances: d,
+                    source: src,
+                    synthesis: &syn,
                 });
                 synthesis = synthesis.zip(d, |x, y| x + y);
                 per_patch[2 * pi + di] =
@@ -496,6 +651,47 @@ pub fn fidelity_observed(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Specks are the pixels planted far from their neighbourhood, whatever the texture's own
+    /// fine variation; a smooth ramp and an image of bounded (uniform) grain have none.
+    #[test]
+    fn speck_fraction_counts_isolated_outliers() {
+        let (w, h) = (64u32, 48u32);
+        let grain = |x: u32, y: u32| 0.47 + 0.06 * rng::uniform(3, 9, y * w + x) as f32;
+        let mut p = Photo {
+            width: w,
+            height: h,
+            pixels: (0..h)
+                .flat_map(|y| (0..w).map(move |x| [grain(x, y), 0.4, 0.3]))
+                .collect(),
+        };
+        assert_eq!(speck_fraction(&p), 0.0);
+        let ramp = Photo {
+            width: w,
+            height: h,
+            pixels: (0..w * h)
+                .map(|i| [(i % w) as f32 / w as f32, 0.2, 0.9])
+                .collect(),
+        };
+        assert_eq!(speck_fraction(&ramp), 0.0);
+        // Lines one pixel wide (joints) on a flat image are not specks.
+        let mut lines = ramp.clone();
+        for (i, px) in lines.pixels.iter_mut().enumerate() {
+            let (x, y) = (i as u32 % w, i as u32 / w);
+            *px = if x % 9 == 4 || y % 7 == 3 {
+                [0.1, 0.1, 0.1]
+            } else {
+                [0.6, 0.3, 0.2]
+            };
+        }
+        assert_eq!(speck_fraction(&lines), 0.0);
+        // Twelve pixels, apart from each other, a bright blue speck each.
+        for k in 0..12u32 {
+            let (x, y) = (3 + 5 * k, 4 + 3 * k);
+            p.pixels[(y * w + x) as usize] = [0.5, 0.4, 1.0];
+        }
+        assert_eq!(speck_fraction(&p), 12.0 / (w * h) as f64);
+    }
 
     fn fidelity_with(halves: f64, per_patch: [f64; 4]) -> Fidelity {
         let d = |v: f64| Distances {

@@ -195,6 +195,7 @@ pub fn fit_structured(
             },
         }
     };
+    let reference = crate::evaluate::Reference::of(photo);
     let mut best: Option<(f64, Analysis)> = None;
     // The residual's amplitude and match chosen for the refined pattern (the first candidate);
     // the rougher ones are fitted with that choice only (a third of the work each).
@@ -227,9 +228,21 @@ pub fn fit_structured(
                     match_spectrum(photo, &mut a.params, opts);
                 }
             }
-            let a = with_tone(a);
-            let img = render(&a.params, photo.width, photo.height, &View::default()).to_photo();
-            let d = crate::evaluate::distances_with(db, &img, photo);
+            // Scored with a tone curve fitted to the user's seed alone (the chosen candidate's
+            // curve is fitted again on [`TONE_SEEDS`] renders below). The tone fit's render of
+            // that seed is the scored image before its curve (the curve is applied per pixel,
+            // last): mapped here instead of rendered again, bit for bit the same image
+            // (tested).
+            let untoned = a.clone();
+            let (tone, shown) = fit_tone_rendered(photo, &a.params, SELECTION_TONE_SEEDS);
+            if let Model::Structured(m) = &mut a.params.model {
+                m.tone = tone;
+            }
+            let img = match shown {
+                Some(pixels) => with_tone_applied(&a.params, photo.width, photo.height, pixels),
+                None => render(&a.params, photo.width, photo.height, &View::default()).to_photo(),
+            };
+            let d = reference.distances(db, &img);
             let score = predicted_ratio(d.spectrum_db, unit.spectrum_db.max(0.1))
                 + predicted_ratio(d.colour, unit.colour.max(1e-3))
                 + predicted_ratio(d.structure, unit.structure.max(0.1));
@@ -237,7 +250,7 @@ pub fn fit_structured(
                 best_here = Some((score, (alpha, matched)));
             }
             if best.as_ref().is_none_or(|(b, _)| score < *b) {
-                best = Some((score, a));
+                best = Some((score, untoned));
             }
         }
         if i == 0 {
@@ -245,10 +258,17 @@ pub fn fit_structured(
         }
     }
     match best {
-        Some((_, a)) => a,
+        Some((_, a)) => with_tone(a),
         None => with_tone(fit_structured_gains(photo, pattern, opts, swapped, &tile).0),
     }
 }
+
+/// Renders pooled by the tone curve with which step 6 scores each of its candidates: the
+/// user's seed alone. The chosen candidate's curve is fitted again on [`TONE_SEEDS`].
+///
+/// Ours, for speed: the four renders of each candidate's tone fit were four fifths of step
+/// 6's renders (10 candidates on a 256² photo: 3.0 s of the analysis' 4.5 s natively).
+const SELECTION_TONE_SEEDS: u32 = 1;
 
 /// Steps above the refined roughness that step 6 also tries ([`step_6_candidates`]).
 const ROUGHNESS_STEPS: [f32; 2] = [0.06, 0.12];
@@ -474,13 +494,23 @@ const TONE_STRENGTHS: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 /// ramp fits that seed's render 4× closer to the photo than other seeds' (old wood: colour
 /// distance 0.006 against 0.024–0.030), so the others pull the curve their way.
 pub fn fit_tone(photo: &Photo, params: &Params) -> Option<crate::params::Tone> {
-    use crate::evaluate::colour_distance;
+    fit_tone_rendered(photo, params, TONE_SEEDS).0
+}
+
+/// [`fit_tone`] with the renders of `seeds` seeds pooled, and the render of `params.seed` it
+/// made (without a curve; `None` where it rendered nothing).
+fn fit_tone_rendered(
+    photo: &Photo,
+    params: &Params,
+    seeds: u32,
+) -> (Option<crate::params::Tone>, Option<Vec<[f32; 3]>>) {
+    use crate::evaluate::ColourQuantiles;
     use crate::render::{View, render};
     let n = photo.pixels.len();
     if n < 64 || !matches!(params.model, Model::Structured(_)) {
-        return None;
+        return (None, None);
     }
-    let renders: Vec<Vec<[f32; 3]>> = (0..TONE_SEEDS)
+    let mut renders: Vec<Vec<[f32; 3]>> = (0..seeds.max(1))
         .map(|k| {
             let p = Params {
                 seed: params.seed.wrapping_add(k),
@@ -522,7 +552,7 @@ pub fn fit_tone(photo: &Photo, params: &Params) -> Option<crate::params::Tone> {
         height: 1,
         pixels: px.iter().step_by(stride).copied().collect(),
     };
-    let target = sample(&photo.pixels);
+    let target = ColourQuantiles::of(&sample(&photo.pixels));
     let all: Vec<usize> = (0..renders.len()).collect();
     let tone = fit(&all);
     let shown = sample(&renders[0]);
@@ -542,14 +572,42 @@ pub fn fit_tone(photo: &Photo, params: &Params) -> Option<crate::params::Tone> {
                     *p = [0, 1, 2].map(|c| curve(c, p[c]).clamp(0.0, 1.0));
                 }
             }
-            colour_distance(&mapped, &target)
+            ColourQuantiles::of(&mapped).distance(&target)
         })
         .collect();
     let best = (0..loss.len())
         .min_by(|&a, &b| loss[a].total_cmp(&loss[b]))
         .unwrap_or(0);
     let lambda = TONE_STRENGTHS[best];
-    (lambda > 0.0).then(|| tone_strength(&tone, lambda))
+    (
+        (lambda > 0.0).then(|| tone_strength(&tone, lambda)),
+        Some(renders.swap_remove(0)),
+    )
+}
+
+/// The photo that [`crate::render::render`] gives for structured `params` (at the default
+/// view, clamped), from its render without the tone curve: the curve applied per pixel, as the
+/// renderer's last step does ([`crate::render::colour`]).
+fn with_tone_applied(params: &Params, width: u32, height: u32, pixels: Vec<[f32; 3]>) -> Photo {
+    let prep = Prepared::new(params);
+    let curved = prep.pattern[3] >= 2;
+    Photo {
+        width,
+        height,
+        pixels: pixels
+            .into_iter()
+            .map(|p| {
+                std::array::from_fn(|c| {
+                    let v = if curved {
+                        crate::render::tone_eval(&prep, c, p[c])
+                    } else {
+                        p[c]
+                    };
+                    v.clamp(0.0, 1.0)
+                })
+            })
+            .collect(),
+    }
 }
 
 /// `tone` turned down to strength `lambda`: `identity + λ·(tone − identity)` at its knots.
@@ -1054,6 +1112,10 @@ mod tests {
             m.tone = Some(tone.clone());
         }
         with.validate().unwrap();
+        // The tone fit's own render of the seed, through the curve, is the render with it.
+        let (_, shown) = fit_tone_rendered(&photo, &p, TONE_SEEDS);
+        let mapped = with_tone_applied(&with, 128, 128, shown.expect("rendered"));
+        assert_eq!(mapped, render(&with, 128, 128, &View::default()).to_photo());
         for c in 0..3 {
             let [lo, hi] = tone.range[c];
             for k in 1..8 {

@@ -262,9 +262,21 @@ fn the_dev_set_yardstick_tabulates_choices_and_fidelity() {
     // The whole ranking's numbers (noise and the nine families), for offline re-ranking.
     assert_eq!(photo["choices"][0]["ranking"].as_array().unwrap().len(), 10);
     assert!(photo["auto"]["spectrum_ratio"].as_f64().unwrap() > 0.0);
+    // Speck fractions of the patch, the chosen synthesis and every candidate.
+    let choice = &photo["choices"][0];
+    for v in [
+        &choice["photo_specks"],
+        &choice["render_specks"],
+        &choice["ranking"][9]["specks"],
+    ] {
+        assert!((0.0..1.0).contains(&v.as_f64().unwrap()), "{choice}");
+    }
+    assert_eq!(choice["pixels"], 128 * 128);
     let summary = &lines[1]["summary"];
     assert_eq!(summary["stochastic_ok"]["total"], 4);
     assert_eq!(summary["structured_labelled"]["total"], 0);
+    assert_eq!(summary["specks_clean"]["total"], 4);
+    assert_eq!(summary["specks_by_model"].as_array().unwrap().len(), 10);
     // The text table, of fold 0 of 1 (every photo); a set without a manifest is bad input.
     let args = ["fidelity", "--set", &set, "--refine", "0", "--fold", "0/1"];
     let text = stdout(&proctex(&args));
@@ -275,6 +287,7 @@ fn the_dev_set_yardstick_tabulates_choices_and_fidelity() {
     assert!(text.contains("summary of fold 0 of 1"), "{text}");
     assert!(text.contains("stochastic patches served well: "), "{text}");
     assert!(text.contains("confusion"), "{text}");
+    assert!(text.contains("specks per model"), "{text}");
     let o = proctex(&["fidelity", "--set", "/nonexistent/set"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(

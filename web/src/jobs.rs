@@ -458,9 +458,10 @@ mod tests {
         let (rgba, w, h) = sample();
         let db = Db::shipped();
         let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
-        assert_eq!(job.progress(), (0, 9));
+        let steps = proctex::pattern::PatternKind::ALL.len();
+        assert_eq!(job.progress(), (0, steps));
         while job.step(db) {}
-        assert_eq!(job.progress(), (9, 9));
+        assert_eq!(job.progress(), (steps, steps));
         let rows = job.rank(db);
         let opts = Options {
             seed: 1,

@@ -5,7 +5,8 @@ use std::path::Path;
 
 use proctex::analyze::Options;
 use proctex::devset::{
-    Category, PhotoResult, Summary, defined, fold_of, overall, parse_manifest, ratios,
+    Category, PhotoResult, SPECK_LIMIT, Summary, defined, fold_of, overall, parse_manifest, ratios,
+    speck_ratio,
 };
 use proctex::evaluate::{fidelity, fidelity_observed, ratio_difference};
 use proctex::retrieve::{ModelChoice, Refinement};
@@ -36,7 +37,9 @@ analysis time; per photo the ratios (spectrum, colour, structure, overall: their
 automatic choice and of the noise model alone, with seeds 1..N (default 1). Then the summary:
 labelled-family rates of the structured patches (first and top three), the stochastic patches
 served well (the noise model kept, or a family no farther from the photo), mean overall ratios
-and their difference with standard errors over photos, times, and the confusion matrix.
+and their difference with standard errors over photos, times, the confusion matrix, and specks:
+per patch the speck fraction of the photo, of the chosen model's synthesis and of every ranked
+candidate (isolated outlier pixels), summarised against 1.5× the photo's own.
 --fold K/F: only the photos of fold K (0..F-1) of F, by a hash of the file name (held-out
 folds for cross-validation).";
 
@@ -271,11 +274,12 @@ fn print_photo(r: &PhotoResult) {
             }
         };
         println!(
-            "  {:<12} {:<11} {judged:<22} top-3 {:<34} {:>7.0} ms",
+            "  {:<12} {:<11} {judged:<22} top-3 {:<34} {:>7.0} ms  specks {:.2}×",
             ch.patch,
             ch.chosen,
             ch.top3.join(", "),
-            ch.analysis_ms
+            ch.analysis_ms,
+            speck_ratio(ch.render_specks, ch.photo_specks, ch.pixels)
         );
     }
 }
@@ -331,6 +335,22 @@ fn print_summary(s: &Summary, fold: Option<(usize, usize)>) {
     }
     for (side, ms) in &s.median_ms {
         println!("median automatic analysis of a {side}² patch: {ms:.0} ms");
+    }
+    let r = &s.specks_clean;
+    println!(
+        "specks: the chosen model's synthesis within {SPECK_LIMIT}× the photo's speck fraction: \
+         {}/{} patches = {:.0} % ± {:.0} %",
+        r.hits,
+        r.total,
+        100.0 * r.fraction(),
+        100.0 * r.standard_error
+    );
+    println!("specks per model (every patch's fitted candidate; ratio to the photo's):");
+    for m in &s.specks_by_model {
+        println!(
+            "  {:<11} {:>3} renders, {:>3} past {SPECK_LIMIT}×; median ratio {:.2}, largest {:.2}",
+            m.model, m.renders, m.over_limit, m.median_ratio, m.max_ratio
+        );
     }
     println!("confusion (labels → chosen: patches):");
     for (label, cells) in &s.confusion {
