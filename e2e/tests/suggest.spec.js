@@ -49,6 +49,29 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   expect(meanDiff(await grab(page, square), first)).toBeGreaterThan(2);
 });
 
+test("the user's pick survives the same crop ranked again; another photo gets its best", async ({ page }) => {
+  await openApp(page);
+  const s = await suggestionsFor(page, 'skimage_brick_512.png');
+  const other = s.suggestions.findIndex((r, i) => i > 0 && r.name !== 'noise');
+  const name = s.suggestions[other].name;
+  await adopt(page, other);
+  // The same photo and crop analysed and ranked again: the picked model is adopted again.
+  const again = await suggestionsFor(page, 'skimage_brick_512.png');
+  const row = again.suggestions.findIndex((r) => r.name === name);
+  expect(row).toBeGreaterThan(0);
+  await page.waitForFunction((k) => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().adopted === k;
+  }, row, { polling: 100, timeout: 60_000 });
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(name);
+  // Another photo: its own best, and back on the first, the pick is forgotten.
+  const gravel = await suggestionsFor(page, 'skimage_gravel_512.png');
+  expect(gravel.adopted).toBe(0);
+  const third = await suggestionsFor(page, 'skimage_brick_512.png');
+  expect(third.adopted).toBe(0);
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(third.suggestions[0].name);
+});
+
 test('a gravel photo ranks the noise model first and keeps it', async ({ page }) => {
   await openApp(page);
   const s = await suggestionsFor(page, 'skimage_gravel_512.png');

@@ -361,6 +361,17 @@ struct SuggestState {
     error: Option<String>,
     /// The current photo's suggestions start when the user asks (a button instead of a list).
     on_request: bool,
+    /// The model the user clicked in the list, with the photo and crop it was ranked for.
+    pick: Option<Pick>,
+}
+
+/// A model picked by hand from the list: a later ranking of the same photo and crop (a new
+/// seed, the same crop analysed again) adopts the same model rather than the best one.
+#[derive(Clone, Debug, PartialEq)]
+struct Pick {
+    photo: String,
+    crop: [u32; 4],
+    model: String,
 }
 
 /// The PNG tile export's choices.
@@ -600,6 +611,7 @@ impl ProctexApp {
             })
             .collect();
         let unedited = self.params.is_some() && self.params == self.analysed;
+        let pick = self.suggest.pick.take();
         self.suggest = SuggestState {
             rows,
             thumbs,
@@ -608,6 +620,23 @@ impl ProctexApp {
             timed_out,
             ..SuggestState::default()
         };
+        // The user's pick for this very photo and crop, where it is not the best.
+        let picked = pick
+            .filter(|p| {
+                self.photo
+                    .as_ref()
+                    .is_some_and(|ph| ph.name == p.photo && ph.crop == p.crop)
+            })
+            .and_then(|p| {
+                let i = self.suggest.rows.iter().position(|r| r.name == p.model)?;
+                self.suggest.pick = Some(p);
+                Some(i)
+            })
+            .filter(|&i| i > 0);
+        if let Some(i) = picked.filter(|_| unedited) {
+            self.request_adoption(i);
+            return;
+        }
         match best {
             Some(report) if unedited => self.adopt(0, *report),
             None if unedited && self.suggest.rows.first().is_some_and(|r| r.name == "noise") => {
@@ -780,11 +809,21 @@ impl ProctexApp {
             }
         });
         if let Some(i) = clicked {
-            self.suggest.adopting = Some(i);
-            if !host("adoptSuggestion", &[JsValue::from_f64(i as f64)]) {
-                self.suggest.adopting = None;
-                self.error = Some("Adopting a suggestion: the page's worker is unavailable".into());
-            }
+            self.suggest.pick = self.photo.as_ref().map(|ph| Pick {
+                photo: ph.name.clone(),
+                crop: ph.crop,
+                model: self.suggest.rows[i].name.clone(),
+            });
+            self.request_adoption(i);
+        }
+    }
+
+    /// Asks the worker for suggestion `i` fitted to the photo ([`Command::Adopted`] brings it).
+    fn request_adoption(&mut self, i: usize) {
+        self.suggest.adopting = Some(i);
+        if !host("adoptSuggestion", &[JsValue::from_f64(i as f64)]) {
+            self.suggest.adopting = None;
+            self.error = Some("Adopting a suggestion: the page's worker is unavailable".into());
         }
     }
 
@@ -851,8 +890,12 @@ impl ProctexApp {
                 } => self.analysed(ctx, *report, name, ms, preview),
                 Command::SuggestProgress { done, total } => {
                     if done == 0 {
-                        // A new photo or crop: its list replaces the old one.
-                        self.suggest = SuggestState::default();
+                        // A new photo or crop: its list replaces the old one (the user's pick
+                        // is kept for when the same crop is ranked again).
+                        self.suggest = SuggestState {
+                            pick: self.suggest.pick.take(),
+                            ..SuggestState::default()
+                        };
                     }
                     self.suggest.progress = Some((done, total));
                 }
