@@ -1,14 +1,15 @@
 //! Where a structured model's specks come from: the speck fraction
-//! (`evaluate::speck_fraction`) of one fitted family on one photo quadrant, rendered whole and
+//! (`specks::speck_fraction`) of one fitted family on one photo quadrant, rendered whole and
 //! with one part taken out at a time.
 //!
 //! `cargo run --release -p proctex-analyzer --example speck_sources -- PHOTO FAMILY [QX QY]`
 use proctex::analyze::Options;
-use proctex::evaluate::{render_params_at_photo_size, speck_fraction};
+use proctex::evaluate::render_params_at_photo_size;
 use proctex::input::{Crop, Photo};
 use proctex::params::Model;
 use proctex::pattern::PatternKind;
 use proctex::retrieve::{ModelChoice, Refinement, analyze_photo_model};
+use proctex::specks::speck_fraction;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();

@@ -129,7 +129,7 @@ pub struct PatchChoice {
     /// The whole ranking's numbers, nearest first: what choosing the ranking's constants
     /// again needs without analysing again (the ranking is a function of these).
     pub ranking: Vec<Candidate>,
-    /// Speck fractions ([`crate::evaluate::speck_fraction`]) of the source patch and of the
+    /// Speck fractions ([`crate::specks::speck_fraction`]) of the source patch and of the
     /// synthesis of the chosen model; the patch's pixel count (for [`speck_ratio`]).
     pub photo_specks: f64,
     pub render_specks: f64,
@@ -200,7 +200,8 @@ impl PhotoResult {
         let mut choices: Vec<Option<PatchChoice>> = vec![None; PATCHES.len()];
         let auto = auto_run(&mut |run: SynthesisRun| {
             if choices[run.patch].is_none() {
-                use crate::evaluate::{render_params_at_photo_size, speck_fraction};
+                use crate::evaluate::render_params_at_photo_size;
+                use crate::specks::speck_fraction;
                 let names: Vec<String> = run.ranking.iter().map(|s| s.name.to_string()).collect();
                 choices[run.patch] = Some(PatchChoice {
                     patch: PATCHES[run.patch],

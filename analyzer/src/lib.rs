@@ -26,6 +26,7 @@ pub mod retrieve;
 pub mod rng;
 pub mod seamless;
 pub mod solid;
+pub mod specks;
 pub mod spectrum;
 pub mod structure;
 pub mod two_tone;
