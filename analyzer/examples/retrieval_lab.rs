@@ -3,6 +3,7 @@
 //!
 //! `cargo run --release -p proctex-analyzer --example retrieval_lab -- DIR [PER_KIND]`
 
+use proctex::cues::blur;
 use proctex::db::{Db, Entry, describe_pattern, query, sample};
 use proctex::devset::{Category, fold_of, parse_manifest};
 use proctex::gabor::{SIZE, describe};
@@ -50,38 +51,6 @@ fn std_of(v: &[f32]) -> f32 {
     let n = v.len() as f32;
     let m = v.iter().sum::<f32>() / n;
     (v.iter().map(|x| (x - m) * (x - m)).sum::<f32>() / n).sqrt()
-}
-
-/// Separable Gaussian blur, circular.
-fn blur(v: &[f32], n: usize, sigma: f32) -> Vec<f32> {
-    if sigma < 0.05 {
-        return v.to_vec();
-    }
-    let r = (3.0 * sigma).ceil() as i32;
-    let k: Vec<f32> = (-r..=r)
-        .map(|i| (-(i * i) as f32 / (2.0 * sigma * sigma)).exp())
-        .collect();
-    let ks: f32 = k.iter().sum();
-    // One pass along x (`at(y, x)` the index of pixel x of line y), then one along y.
-    let pass = |v: &[f32], at: &dyn Fn(usize, usize) -> usize| {
-        let mut out = vec![0.0; n * n];
-        for line in 0..n {
-            for x in 0..n {
-                let s: f32 = k
-                    .iter()
-                    .enumerate()
-                    .map(|(j, w)| {
-                        let xx = (x as i32 + j as i32 - r).rem_euclid(n as i32) as usize;
-                        w * v[at(line, xx)]
-                    })
-                    .sum();
-                out[at(line, x)] = s / ks;
-            }
-        }
-        out
-    };
-    let rows = pass(v, &|y, x| y * n + x);
-    pass(&rows, &|x, y| y * n + x)
 }
 
 /// Connected components (4-neighbour) of `mask`; label per pixel (usize::MAX outside).
@@ -277,73 +246,6 @@ fn otsu(v: &[f32]) -> f32 {
     lo + (at as f32 + 1.0) / 64.0 * (hi - lo)
 }
 
-/// Normalised autocorrelation of a SIZE² map (periodic component), row-major, origin at 0.
-fn acf(map: &[f32]) -> Vec<f32> {
-    let n = SIZE;
-    let m = map.iter().sum::<f32>() / map.len() as f32;
-    let z: Vec<f32> = map.iter().map(|v| v - m).collect();
-    let spec = proctex::spectrum::spectrum_real(&z, n, n, true);
-    let pow: Vec<rustfft::num_complex::Complex32> = spec
-        .iter()
-        .map(|c| rustfft::num_complex::Complex32::new(c.norm_sqr(), 0.0))
-        .collect();
-    let a = proctex::spectrum::ifft2(pow, n, n);
-    let a0 = a[0].re.max(1e-20);
-    a.iter().map(|c| c.re / a0).collect()
-}
-
-/// Lattice strength: the highest local maximum of the ACF outside its central lobe (the
-/// positive region connected to the origin), and its offset.
-fn lattice(map: &[f32]) -> (f32, (i32, i32)) {
-    let n = SIZE;
-    let a = acf(map);
-    let mut lobe = vec![false; n * n];
-    let mut stack = vec![0usize];
-    lobe[0] = true;
-    while let Some(j) = stack.pop() {
-        let (x, y) = (j % n, j / n);
-        for (nx, ny) in [(x + n - 1, y), (x + 1, y), (x, y + n - 1), (x, y + 1)] {
-            let k = (ny % n) * n + nx % n;
-            if !lobe[k] && a[k] > 0.0 {
-                lobe[k] = true;
-                stack.push(k);
-            }
-        }
-    }
-    let mut best = (0.0f32, (0, 0));
-    for y in 0..n {
-        for x in 0..n {
-            let j = y * n + x;
-            if lobe[j] {
-                continue;
-            }
-            let v = a[j];
-            let mut peak = true;
-            for dy in [n - 1, 0, 1] {
-                for dx in [n - 1, 0, 1] {
-                    if (dx, dy) != (0, 0) && a[((y + dy) % n) * n + (x + dx) % n] > v {
-                        peak = false;
-                    }
-                }
-            }
-            if peak && v > best.0 {
-                let sx = if x > n / 2 {
-                    x as i32 - n as i32
-                } else {
-                    x as i32
-                };
-                let sy = if y > n / 2 {
-                    y as i32 - n as i32
-                } else {
-                    y as i32
-                };
-                best = (v, (sx, sy));
-            }
-        }
-    }
-    best
-}
-
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let dir = &args[1];
@@ -408,19 +310,6 @@ fn main() {
             }),
         ),
     ];
-    if std::env::var("LATTICE").is_ok() {
-        for p in &patches {
-            let tt = two_tone(&p.photo);
-            let img = proctex::gabor::descriptor_image(
-                &tt.structure,
-                p.photo.width as usize,
-                p.photo.height as usize,
-            );
-            let (v, at) = lattice(&img);
-            println!("{:6.3} {:?} {} {:?}", v, at, p.file, p.labels);
-        }
-        return;
-    }
     let names: Vec<&str> = PatternKind::ALL.iter().map(|k| k.name()).collect();
     for (name, f) in &maps {
         let (mut first, mut top3, mut n) = (0, 0, 0);

@@ -134,6 +134,9 @@ pub struct PatchChoice {
     pub photo_specks: f64,
     pub render_specks: f64,
     pub pixels: usize,
+    /// The source patch's structure cues ([`crate::cues::cues`], in the order of
+    /// [`crate::cues::CUE_NAMES`]).
+    pub photo_cues: [f32; crate::cues::CUES],
 }
 
 /// Most specks a render may have, in units of its photo's own ([`speck_ratio`]).
@@ -161,6 +164,8 @@ pub struct Candidate {
     /// Speck fraction of the candidate as fitted for the ranking, rendered at the patch's size
     /// with the patch's seed.
     pub specks: f64,
+    /// Structure cues of that render ([`crate::cues::cues`]).
+    pub cues: [f32; crate::cues::CUES],
 }
 
 /// One photo measured: the choices, and the fidelity of the automatic choice and of the noise
@@ -211,18 +216,21 @@ impl PhotoResult {
                     ranking: run
                         .ranking
                         .iter()
-                        .map(|c| Candidate {
-                            name: c.name.to_string(),
-                            distance: c.distance,
-                            score: c.score,
-                            retrieval: c.retrieval_distance,
-                            refined: c.refined_distance,
-                            specks: speck_fraction(&render_params_at_photo_size(
-                                &c.preview, run.source,
-                            )),
+                        .map(|c| {
+                            let render = render_params_at_photo_size(&c.preview, run.source);
+                            Candidate {
+                                name: c.name.to_string(),
+                                distance: c.distance,
+                                score: c.score,
+                                retrieval: c.retrieval_distance,
+                                refined: c.refined_distance,
+                                specks: speck_fraction(&render),
+                                cues: crate::cues::cues(&render),
+                            }
                         })
                         .collect(),
                     photo_specks: speck_fraction(run.source),
+                    photo_cues: crate::cues::cues(run.source),
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -612,11 +620,13 @@ mod tests {
                         } else {
                             0.004
                         },
+                        cues: [0.0; crate::cues::CUES],
                     }],
                     photo_specks: 0.004,
                     // The chosen synthesis: past the limit on the first photo only.
                     render_specks: if file == "a.png" { 0.01 } else { 0.004 },
                     pixels: 10_000,
+                    photo_cues: [0.0; crate::cues::CUES],
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

@@ -8,6 +8,7 @@
 
 pub mod analyze;
 pub mod colour;
+pub mod cues;
 pub mod db;
 pub mod devset;
 pub mod error;
