@@ -19,6 +19,7 @@ pub mod histogram;
 pub mod input;
 pub mod morph;
 pub mod noise;
+pub mod parallel;
 pub mod params;
 pub mod pattern;
 pub mod refine;

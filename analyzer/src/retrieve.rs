@@ -386,12 +386,22 @@ impl Suggester {
             refined_distance: None,
             preview: noise,
         });
-        for (starts, (p, refined_distance, swapped)) in self.starts.iter().zip(&self.refined) {
-            let m = &starts[0];
+        // Each family fitted and rendered: independent, so in parallel on native.
+        let families: Vec<(&Vec<Match>, &Refined)> =
+            self.starts.iter().zip(&self.refined).collect();
+        let fits = crate::parallel::map_in_order(&families, |&(_, (p, _, swapped))| {
             let mut p = p.clone();
             p.scale *= self.per_px;
             let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, &tile).params;
             let distance = texture_distance(db, &self.tt, &self.q, &fitted, &tile);
+            (fitted, distance)
+        });
+        for ((starts, (p, refined_distance, swapped)), (fitted, distance)) in
+            families.into_iter().zip(fits)
+        {
+            let m = &starts[0];
+            let mut p = p.clone();
+            p.scale *= self.per_px;
             p.scale *= self.texels_per_small;
             out.push(Suggestion {
                 name: p.kind.name(),

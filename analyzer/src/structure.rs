@@ -200,27 +200,10 @@ pub fn fit_structured(
         }
     };
     let reference = crate::evaluate::Reference::of(photo);
-    let mut best: Option<(f64, Analysis)> = None;
-    // The residual's amplitude and match chosen for the refined pattern (the first candidate);
-    // the rougher ones are fitted with that choice only (a third of the work each).
-    let mut chosen: Option<(f64, bool)> = None;
-    for (i, pat) in candidates.iter().enumerate() {
-        let (base, gains, balance) = fit_structured_gains(photo, pat, opts, swapped, &tile);
-        let grows = gains.iter().any(|&g| g > 1.0);
-        if !grows && candidates.len() == 1 {
-            return with_tone(base);
-        }
-        // Nothing to grow: the fit as it is (once, unmatched) competes.
-        let combos: Vec<(f64, bool)> = match (grows, chosen) {
-            (false, _) => vec![(0.0, false)],
-            (true, Some(c)) if i > 0 => vec![c],
-            (true, _) => RESIDUAL_GAIN_STRENGTHS
-                .iter()
-                .flat_map(|&alpha| [(alpha, false), (alpha, true)])
-                .collect(),
-        };
-        let mut best_here: Option<(f64, (f64, bool))> = None;
-        for (alpha, matched) in combos {
+    // One residual amplitude (`alpha`) and match (`matched`) of a fitted candidate: its score
+    // and the analysis without its selection tone curve.
+    let score =
+        |base: &Analysis, gains: [f64; 3], balance: &Balance, (alpha, matched): (f64, bool)| {
             let mut a = base.clone();
             if let Model::Structured(m) = &mut a.params.model {
                 let grow = gains.map(|g| g.max(1.0).powf(alpha));
@@ -235,8 +218,7 @@ pub fn fit_structured(
             // Scored with a tone curve fitted to the user's seed alone (the chosen candidate's
             // curve is fitted again on [`TONE_SEEDS`] renders below). The tone fit's render of
             // that seed is the scored image before its curve (the curve is applied per pixel,
-            // last): mapped here instead of rendered again, bit for bit the same image
-            // (tested).
+            // last): mapped here instead of rendered again, bit for bit the same image (tested).
             let untoned = a.clone();
             let (tone, shown) = fit_tone_rendered(photo, &a.params, SELECTION_TONE_SEEDS);
             if let Model::Structured(m) = &mut a.params.model {
@@ -247,18 +229,45 @@ pub fn fit_structured(
                 None => render(&a.params, photo.width, photo.height, &View::default()).to_photo(),
             };
             let d = reference.distances(db, &img);
-            let score = predicted_ratio(d.spectrum_db, unit.spectrum_db.max(0.1))
+            let s = predicted_ratio(d.spectrum_db, unit.spectrum_db.max(0.1))
                 + predicted_ratio(d.colour, unit.colour.max(1e-3))
                 + predicted_ratio(d.structure, unit.structure.max(0.1));
-            if best_here.is_none_or(|(b, _)| score < b) {
-                best_here = Some((score, (alpha, matched)));
-            }
-            if best.as_ref().is_none_or(|(b, _)| score < *b) {
-                best = Some((score, untoned));
-            }
+            (s, untoned)
+        };
+    let grows = |gains: &[f64; 3]| gains.iter().any(|&g| g > 1.0);
+    // The refined pattern (the first candidate): every residual amplitude and match; nothing to
+    // grow: the fit as it is (once, unmatched) competes. Scored in parallel on native, kept in
+    // order (the same choice as one after another).
+    let (base, gains, balance) = fit_structured_gains(photo, &candidates[0], opts, swapped, &tile);
+    if !grows(&gains) && candidates.len() == 1 {
+        return with_tone(base);
+    }
+    let combos: Vec<(f64, bool)> = if grows(&gains) {
+        RESIDUAL_GAIN_STRENGTHS
+            .iter()
+            .flat_map(|&alpha| [(alpha, false), (alpha, true)])
+            .collect()
+    } else {
+        vec![(0.0, false)]
+    };
+    let mut best: Option<(f64, Analysis)> = None;
+    let mut chosen = (0.0, false);
+    let first = crate::parallel::map_in_order(&combos, |&c| score(&base, gains, &balance, c));
+    for (&c, (s, a)) in combos.iter().zip(first) {
+        if best.as_ref().is_none_or(|(b, _)| s < *b) {
+            best = Some((s, a));
+            chosen = c;
         }
-        if i == 0 {
-            chosen = best_here.map(|(_, c)| c);
+    }
+    // The rougher candidates, fitted with that choice only (a third of the work each).
+    let rest = crate::parallel::map_in_order(&candidates[1..], |pat| {
+        let (base, gains, balance) = fit_structured_gains(photo, pat, opts, swapped, &tile);
+        let c = if grows(&gains) { chosen } else { (0.0, false) };
+        score(&base, gains, &balance, c)
+    });
+    for (s, a) in rest {
+        if best.as_ref().is_none_or(|(b, _)| s < *b) {
+            best = Some((s, a));
         }
     }
     match best {

@@ -57,7 +57,7 @@ OPTIONS:
                             perlin, turbulence, ridged, grid, brick, cells, planks,
                             wood_lines, rings (retrieved, refined, then fitted)
     --refine N              Nelder–Mead evaluations per family after retrieval, shared by
-                            its two best database entries as starts (default 80; 0:
+                            its two best database entries as starts (default 40; 0:
                             retrieval alone)
     --refine-seconds S      a time budget for the refinement as well: it stops after S
                             seconds (each family keeps its best point so far) and says so;

@@ -1,0 +1,14 @@
+//! Independent work items mapped in parallel on native (rayon), one after another in the
+//! browser's worker (no threads there), with results in the items' order either way: callers
+//! that reduce them in order get the same answer as a plain loop.
+
+/// `f` of every item of `items`, in order.
+pub fn map_in_order<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync + Send) -> Vec<R> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        items.par_iter().map(f).collect()
+    }
+    #[cfg(target_arch = "wasm32")]
+    items.iter().map(f).collect()
+}
