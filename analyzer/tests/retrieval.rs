@@ -2,6 +2,8 @@
 //! each structured model rendered at random parameters, rotations, scales, tones and seeds
 //! (none of them the database's) → automatic model choice → the right family must win.
 
+mod common;
+
 use proctex::analyze::Options;
 use proctex::db::Db;
 use proctex::input::Photo;
@@ -153,4 +155,27 @@ fn synthetic_round_trip_finds_the_right_family() {
         100.0 * rate
     );
     assert!(median <= 2.8 && p90 <= 4.0, "median {median}, p90 {p90}");
+}
+
+/// A photo of thin dark cracks: the noise model matches its histogram and spectrum closely
+/// enough to come first by texture distance and margin (it did on all four quadrants before
+/// the rule), but the skewness says dark network, so the best family comes first and the noise
+/// model right after it. A gravel photo has no dark network and keeps the noise
+/// model first. (Development-set photos: the choices that `proctex fidelity --set` records.)
+#[test]
+fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
+    use proctex::cues::dark_skewness;
+    use proctex::retrieve::{DARK_NETWORK_SKEWNESS, Refinement, suggest_with};
+    let db = Db::shipped();
+    let opts = Options::default();
+    let cracks = common::dev_quadrant("scorched3d_crackedplaster_256.png");
+    assert!(dark_skewness(&cracks) < DARK_NETWORK_SKEWNESS);
+    let ranked = suggest_with(db, &cracks, &opts, Refinement::default(), &|_, _| true);
+    let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
+    assert_eq!(&names[..2], &["ridged", "noise"], "{names:?}");
+
+    let gravel = common::dev_quadrant("scorched3d_gravel_256.png");
+    assert!(dark_skewness(&gravel) > DARK_NETWORK_SKEWNESS);
+    let ranked = suggest_with(db, &gravel, &opts, Refinement::default(), &|_, _| true);
+    assert_eq!(ranked[0].name, "noise");
 }

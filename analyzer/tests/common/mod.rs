@@ -15,6 +15,21 @@ pub fn sample(name: &str) -> Photo {
     Photo::decode(&sample_bytes(name)).expect("sample decodes")
 }
 
+/// The top-left quadrant of a development-set photo (`../shared/photos/dev/`, beside the
+/// repository), as the development-set yardstick analyses it.
+pub fn dev_quadrant(name: &str) -> Photo {
+    let path = format!(
+        "{}/../../shared/photos/dev/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let photo = Photo::decode(&bytes).expect("development photo decodes");
+    let (w, h) = (photo.width / 2, photo.height / 2);
+    photo
+        .crop(proctex::input::Crop { x: 0, y: 0, w, h })
+        .expect("quadrant")
+}
+
 /// Shipped samples used across tests.
 pub const SAMPLES: [&str; 6] = [
     "skimage_gravel_512.png",
