@@ -394,14 +394,12 @@ impl Suggester {
             p.scale *= self.per_px;
             let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, &tile).params;
             let distance = texture_distance(db, &self.tt, &self.q, &fitted, &tile);
-            (fitted, distance)
+            (p, fitted, distance)
         });
-        for ((starts, (p, refined_distance, swapped)), (fitted, distance)) in
+        for ((starts, (_, refined_distance, swapped)), (mut p, fitted, distance)) in
             families.into_iter().zip(fits)
         {
             let m = &starts[0];
-            let mut p = p.clone();
-            p.scale *= self.per_px;
             p.scale *= self.texels_per_small;
             out.push(Suggestion {
                 name: p.kind.name(),
