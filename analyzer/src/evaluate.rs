@@ -87,7 +87,7 @@ pub fn radial_spectrum(p: &Photo) -> Vec<f64> {
 
 /// Quantile function of `v` at `count` mid-probabilities.
 fn quantiles(mut v: Vec<f32>, count: usize) -> Vec<f64> {
-    v.sort_unstable_by(f32::total_cmp);
+    crate::radix::sort(&mut v);
     let n = v.len();
     (0..count)
         .map(|i| {

@@ -231,7 +231,7 @@ pub fn describe(map: &[f32]) -> Descriptor {
         out[block + i] = (s2 * (k * k) / n - m * m).max(0.0).sqrt() as f32;
     }
     let mut sorted = z;
-    sorted.sort_unstable_by(f32::total_cmp);
+    crate::radix::sort(&mut sorted);
     for (i, &p) in QUANTILE_AT.iter().enumerate() {
         out[2 * block + i] = sorted[((sorted.len() - 1) as f32 * p).round() as usize];
     }

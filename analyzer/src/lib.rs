@@ -22,6 +22,7 @@ pub mod noise;
 pub mod parallel;
 pub mod params;
 pub mod pattern;
+pub mod radix;
 pub mod refine;
 pub mod render;
 pub mod retrieve;

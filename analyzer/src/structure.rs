@@ -548,14 +548,14 @@ fn fit_structured_gains(
 
     // Rank pairing: photo pixel of rank r ↔ pattern value of rank r.
     let mut s_sorted = s_img.clone();
-    s_sorted.sort_unstable_by(f32::total_cmp);
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    let key = |i: u32| {
-        let t = tt.structure[i as usize];
-        if swapped { 1.0 - t } else { t }
-    };
+    crate::radix::sort(&mut s_sorted);
+    let keys: Vec<f32> = tt
+        .structure
+        .iter()
+        .map(|&t| if swapped { 1.0 - t } else { t })
+        .collect();
     // Ties (flat photo regions) in index order: deterministic.
-    order.sort_unstable_by(|&a, &b| key(a).total_cmp(&key(b)).then(a.cmp(&b)));
+    let order = crate::radix::argsort(&keys);
     let mut paired = vec![0.0f32; n];
     for (r, &i) in order.iter().enumerate() {
         paired[i as usize] = s_sorted[r];

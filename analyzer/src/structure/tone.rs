@@ -65,7 +65,7 @@ pub(super) fn fit_tone_rendered(
     let mut sorted_photo: [Vec<f32>; 3] = Default::default();
     for (c, t) in sorted_photo.iter_mut().enumerate() {
         *t = photo.pixels.iter().map(|p| p[c]).collect();
-        t.sort_unstable_by(f32::total_cmp);
+        crate::radix::sort(t);
     }
     let fit = |seeds: &[usize]| {
         let mut tone = crate::params::Tone::identity(TONE_KNOTS);
@@ -74,7 +74,7 @@ pub(super) fn fit_tone_rendered(
                 .iter()
                 .flat_map(|&k| renders[k].iter().map(move |p| p[c]))
                 .collect();
-            r.sort_unstable_by(f32::total_cmp);
+            crate::radix::sort(&mut r);
             let lo = quantile(&r, 0.002);
             let hi = quantile(&r, 0.998).max(lo + 1e-3);
             tone.range[c] = [lo, hi];
