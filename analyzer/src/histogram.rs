@@ -328,6 +328,35 @@ pub fn gaussianize(values: &[f32], knots: usize) -> Gaussianized {
     }
 }
 
+/// Knots of the Gaussian with the mean and standard deviation of the distribution that `knots`
+/// give a unit Gaussian input (evaluated the way the renderer evaluates them, clamped at
+/// ±[`KNOT_Z`]): knot `j` at `mean + sd·z_j`, `z_j` its Gaussian coordinate. Same length.
+pub fn gaussian_knots(knots: &[f32]) -> Vec<f32> {
+    let k = knots.len().saturating_sub(1);
+    if k == 0 {
+        return knots.to_vec();
+    }
+    let tangents = fc_tangents(knots);
+    // Quadrature over the unit Gaussian, in steps of 1/64 out to ±6.
+    let (mut w_sum, mut m1, mut m2) = (0.0f64, 0.0f64, 0.0f64);
+    for i in -384..=384 {
+        let z = i as f64 / 64.0;
+        let w = (-0.5 * z * z).exp();
+        let v = spline_eval(knots, &tangents, knot_coordinate(z as f32, 1.0)) as f64;
+        w_sum += w;
+        m1 += w * v;
+        m2 += w * v * v;
+    }
+    let mean = m1 / w_sum;
+    let sd = (m2 / w_sum - mean * mean).max(0.0).sqrt();
+    (0..=k)
+        .map(|j| {
+            let z = -KNOT_Z as f64 + 2.0 * KNOT_Z as f64 * j as f64 / k as f64;
+            (mean + sd * z) as f32
+        })
+        .collect()
+}
+
 /// Fritsch–Carlson tangents for knots at uniform spacing `h = 1/K`: three-point average slopes,
 /// zero at local extrema, then limited so that `α² + β² ≤ 9` on every interval (monotone).
 pub fn fc_tangents(knots: &[f32]) -> Vec<f32> {
@@ -536,5 +565,26 @@ mod tests {
             assert!(y >= prev - 1e-6, "not monotone at {i}");
             prev = y;
         }
+    }
+
+    #[test]
+    fn gaussian_knots_keep_the_mean_and_spread_not_the_tails() {
+        let z = |j: usize| -KNOT_Z + 2.0 * KNOT_Z * j as f32 / 10.0;
+        // Knots of a Gaussian (sd 0.2 around 0.1) come back as they were, but for the few
+        // per cent of variance that the clamp at ±KNOT_Z removes.
+        let linear: Vec<f32> = (0..=10).map(|j| 0.1 + 0.2 * z(j)).collect();
+        for (a, b) in gaussian_knots(&linear).iter().zip(&linear) {
+            assert!((a - b).abs() < 0.02 * b.abs().max(0.2), "{a} vs {b}");
+        }
+        // Heavy tails (a narrow centre, far ends): the Gaussian of the same spread has ends
+        // nearer the centre and a wider centre.
+        let heavy = [
+            -0.6, -0.5, -0.3, -0.09, -0.03, 0.0, 0.03, 0.1, 0.3, 0.4, 0.45,
+        ];
+        let g = gaussian_knots(&heavy);
+        assert!(g[0] > heavy[0] && g[10] < heavy[10]);
+        assert!(g[6] - g[4] > heavy[6] - heavy[4]);
+        assert!(g.windows(2).all(|w| w[1] > w[0]));
+        assert_eq!(gaussian_knots(&[0.5]), vec![0.5]);
     }
 }

@@ -207,6 +207,7 @@ pub fn fit_structured(
             let mut a = base.clone();
             if let Model::Structured(m) = &mut a.params.model {
                 let grow = gains.map(|g| g.max(1.0).powf(alpha));
+                gaussian_where_grown(&mut m.residual, grow);
                 scale_residual(&mut m.residual, grow);
                 balance.contract_ramp(&mut m.ramp, grow);
             }
@@ -456,6 +457,34 @@ fn predicted_ratio(d: f64, unit: f64) -> f64 {
 /// Strengths `α` of the residual gain `g` that [`fit_structured`] tries (the residual's
 /// amplitude times `g^α`).
 const RESIDUAL_GAIN_STRENGTHS: [f64; 3] = [0.0, 0.5, 1.0];
+
+/// Step 6 (ours): each residual channel that grows (`grow > 1`) is drawn Gaussian, with the
+/// mean and spread its histogram gives it ([`crate::histogram::gaussian_knots`]), before it is
+/// scaled.
+///
+/// Why: a residual grows to supply fine grain that the rendered ramp lacks and the analysed
+/// residual does not hold (the rank pairing gave the photo's grain along its tone line to the
+/// ramp), so the analysed residual's histogram does not describe what is added. That histogram
+/// is the photo's colour off the tone line, whose tails are structure the ramp misses (mortar
+/// of another hue than the bricks' lighter pixels): coherent lines and patches in the photo,
+/// isolated pixels once drawn as noise and multiplied by the gain. Measured on the development
+/// set (`proctex fidelity --set`, every quadrant, the chosen model's synthesis within 1.5× the
+/// photo's specks): 143 → 154 of 208 patches (grid 2 → 9 of 10, turbulence 17 → 19 of 27,
+/// cells 3 → 4 of 9, none fewer), the same 208 choices but one, structured fidelity
+/// ln(auto/noise) −0.249 ± 0.046 → −0.263 ± 0.050, stochastic −0.131 → −0.133; the red brick
+/// wall's planks 1.7 → 0.67 % specks (its photo 0.28 %). A channel that does not grow keeps
+/// its histogram (Lagae's model), and step 6's score chooses between the two as between every
+/// amplitude.
+fn gaussian_where_grown(noise: &mut NoiseModel, grow: [f64; 3]) {
+    if !noise.histogram.enabled {
+        return;
+    }
+    for (c, &g) in grow.iter().enumerate() {
+        if g > 1.0 {
+            noise.histogram.knots[c] = crate::histogram::gaussian_knots(&noise.histogram.knots[c]);
+        }
+    }
+}
 
 /// Largest factor by which [`fit_structured`] may grow the residual's amplitude.
 const MAX_RESIDUAL_GAIN: f64 = 100.0;
