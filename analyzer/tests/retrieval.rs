@@ -159,9 +159,10 @@ fn synthetic_round_trip_finds_the_right_family() {
 
 /// A photo of thin dark cracks: the noise model matches its histogram and spectrum closely
 /// enough to come first by texture distance and margin (it did on all four quadrants before
-/// the rule), but the skewness says dark network, so the best family comes first and the noise
-/// model right after it. A gravel photo has no dark network and keeps the noise
-/// model first. (Development-set photos: the choices that `proctex fidelity --set` records.)
+/// the rule), but the skewness says dark network, so the best family (one of the photo's
+/// labelled families) comes first and the noise model right after it. A gravel photo has no
+/// dark network and keeps the noise model first. (Development-set photos: the choices that
+/// `proctex fidelity --set` records.)
 #[test]
 fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
     use proctex::cues::dark_skewness;
@@ -172,7 +173,9 @@ fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
     assert!(dark_skewness(&cracks) < DARK_NETWORK_SKEWNESS);
     let ranked = suggest_with(db, &cracks, &opts, Refinement::default(), &|_, _| true);
     let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
-    assert_eq!(&names[..2], &["ridged", "noise"], "{names:?}");
+    // The manifest's labels of this photo: ridged or cells.
+    assert!(["ridged", "cells"].contains(&names[0]), "{names:?}");
+    assert_eq!(names[1], "noise", "{names:?}");
 
     let gravel = common::dev_quadrant("scorched3d_gravel_256.png");
     assert!(dark_skewness(&gravel) > DARK_NETWORK_SKEWNESS);
