@@ -237,14 +237,14 @@ pub fn describe(map: &[f32]) -> Descriptor {
     Descriptor(out)
 }
 
-/// `Σ|v|` and `Σ|v|²` over a response, in f64: `|v|²` in f64, then one square root
-/// (`Complex::norm` calls libm's hypotf, which took 9 % of a native suggestion's time). Leaves
-/// the response all zeros, as [`ifft2_columns_unscaled_into`] wants its output buffer, in the
-/// same pass over it.
+/// `Σ|v|` and `Σ|v|²` over a response, summed in f64 (`Complex::norm` calls libm's hypotf,
+/// which took 9 % of a native suggestion's time). Leaves the response all zeros, as
+/// [`ifft2_columns_unscaled_into`] wants its output buffer, in the same pass over it.
 fn magnitude_sums_and_clear(resp: &mut [Complex32]) -> (f64, f64) {
-    // Four partial sums each: independent additions pipeline (one chain stalls on each
-    // addition's latency); the f32 results are the same as one chain's (tested on the
-    // database: its file is bit for bit the same).
+    // |v|² and its square root in f32 (four at a time; the f64 square root's latency was half
+    // of the descriptor's time), four partial sums each in f64 (independent additions
+    // pipeline). The descriptor moves by a few units in the last place of f32: the database
+    // file built with it is byte for byte the one built with f64 square roots and one sum.
     const LANES: usize = 4;
     let (mut s1, mut s2) = ([0.0f64; LANES], [0.0f64; LANES]);
     let mut chunks = resp.chunks_exact_mut(LANES);
