@@ -246,9 +246,9 @@ fn magnitude_sums_and_clear(resp: &mut [Complex32]) -> (f64, f64) {
     // pipeline). The descriptor moves by a few units in the last place of f32: the database
     // file built with it is byte for byte the one built with f64 square roots and one sum.
     const LANES: usize = 4;
+    debug_assert_eq!(resp.len() % LANES, 0, "SIZE² is a multiple of the lanes");
     let (mut s1, mut s2) = ([0.0f64; LANES], [0.0f64; LANES]);
-    let mut chunks = resp.chunks_exact_mut(LANES);
-    for c in &mut chunks {
+    for c in resp.chunks_exact_mut(LANES) {
         let mut q = [0.0f32; LANES];
         for l in 0..LANES {
             q[l] = c[l].re * c[l].re + c[l].im * c[l].im;
@@ -258,13 +258,6 @@ fn magnitude_sums_and_clear(resp: &mut [Complex32]) -> (f64, f64) {
             s1[l] += q[l].sqrt() as f64;
             s2[l] += q[l] as f64;
         }
-    }
-    for v in chunks.into_remainder() {
-        let (re, im) = (v.re as f64, v.im as f64);
-        let q = re * re + im * im;
-        s1[0] += q.sqrt();
-        s2[0] += q;
-        *v = Complex32::default();
     }
     (s1.iter().sum(), s2.iter().sum())
 }

@@ -134,20 +134,8 @@ pub fn ifft2_columns_unscaled(
     h: usize,
     columns: &[usize],
 ) -> Vec<Complex32> {
-    let inverse = |data: &mut [Complex32], len: usize| {
-        let fft = PLANNER.with(|p| p.borrow_mut().plan_fft_inverse(len));
-        let mut scratch = vec![Complex32::default(); fft.get_inplace_scratch_len()];
-        fft.process_with_scratch(data, &mut scratch);
-    };
     let mut t = vec![Complex32::default(); w * h];
-    for &q in columns {
-        let column = &mut spec[q * h..(q + 1) * h];
-        inverse(column, h);
-        for (r, v) in column.iter().enumerate() {
-            t[r * w + q] = *v;
-        }
-    }
-    inverse(&mut t, w);
+    ifft2_columns_unscaled_into(&mut spec, w, h, columns, &mut t, &mut Vec::new());
     t
 }
 
@@ -155,8 +143,7 @@ pub fn ifft2_columns_unscaled(
 /// size (the descriptor's filter bank): `spec` (transposed layout) is transformed in place in
 /// its `columns` only, which must hold the only nonzero entries; `out` receives the row-major
 /// result and must be all zeros on entry (the caller clears it as it reads the result: one
-/// pass over it instead of two). Bit for bit the same result as [`ifft2_columns_unscaled`]
-/// (the same transforms in the same order).
+/// pass over it instead of two).
 pub fn ifft2_columns_unscaled_into(
     spec: &mut [Complex32],
     w: usize,

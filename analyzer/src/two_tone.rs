@@ -187,7 +187,7 @@ pub fn network_phase(map: &[f32], w: usize, h: usize) -> Option<bool> {
         return None;
     }
     let mut sorted = map.to_vec();
-    sorted.sort_by(f32::total_cmp);
+    crate::radix::sort(&mut sorted);
     let quantile = |q: f32| sorted[((sorted.len() - 1) as f32 * q).round() as usize];
     // The share of pixels above `t`, when it is within `range` (a map whose values pile up at
     // the split has no phases of the wanted shares).
