@@ -276,3 +276,17 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
         channel_variance,
     }
 }
+
+/// The noise model of a `side²` synthetic photo of hash noise (`seed`), for tests.
+#[cfg(test)]
+pub(crate) fn hash_noise_params(side: u32, seed: u32) -> crate::params::Params {
+    let pixels = (0..side * side)
+        .map(|i| [0, 1, 2].map(|c| crate::rng::uniform(seed, c, i) as f32 * 0.5 + 0.25))
+        .collect();
+    let photo = Photo {
+        width: side,
+        height: side,
+        pixels,
+    };
+    analyze_photo(&photo, &Options::default()).unwrap().params
+}

@@ -16,6 +16,9 @@ use crate::params::{MAX_BANDS, MAX_KNOTS, MAX_TONE_KNOTS, Model, Params};
 use crate::pattern::{MAX_STOPS, MAX_VALUES, OCTAVES, pattern, ramp};
 use crate::rng;
 
+mod fields;
+pub use fields::{Fields, render_with_fields};
+
 /// Params flattened for per-pixel evaluation (mirrors the GPU uniform block).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Prepared {
@@ -303,26 +306,43 @@ pub fn tile_for(params: &Params) -> Tile {
 /// The multiresolution noise of one channel at texel `u` (Lagae eq. 1 with band clamping).
 #[inline]
 pub fn channel_noise(prep: &Prepared, tile: &Tile, c: usize, u: [f32; 3], log2_fp: f32) -> f32 {
+    band_sum(prep, c, log2_fp, |j| band_noise(prep, tile, c, j, u))
+}
+
+/// Channel `c`'s bands weighted and summed, band `j`'s noise value given by `band(j)` (asked
+/// only for bands with a weight at this footprint).
+#[inline]
+pub(crate) fn band_sum(
+    prep: &Prepared,
+    c: usize,
+    log2_fp: f32,
+    band: impl Fn(usize) -> f32,
+) -> f32 {
     let mut sum = 0.0f32;
     for j in 0..prep.bands as usize {
         let w = prep.weights[c][j] * band_fade(j as u32, log2_fp);
         if w == 0.0 {
             continue;
         }
-        let f = 1.0 / (1u32 << j) as f32;
-        let o = prep.offsets[c][j];
-        let v = if prep.solid {
-            noise3(
-                &tile.data,
-                tile.n,
-                [u[0] * f + o[0], u[1] * f + o[1], u[2] * f + o[2]],
-            )
-        } else {
-            noise2(&tile.data, tile.n, [u[0] * f + o[0], u[1] * f + o[1]])
-        };
-        sum += w * v;
+        sum += w * band(j);
     }
     sum
+}
+
+/// Band `j`'s noise of channel `c` at texel `u`, unweighted.
+#[inline]
+pub(crate) fn band_noise(prep: &Prepared, tile: &Tile, c: usize, j: usize, u: [f32; 3]) -> f32 {
+    let f = 1.0 / (1u32 << j) as f32;
+    let o = prep.offsets[c][j];
+    if prep.solid {
+        noise3(
+            &tile.data,
+            tile.n,
+            [u[0] * f + o[0], u[1] * f + o[1], u[2] * f + o[2]],
+        )
+    } else {
+        noise2(&tile.data, tile.n, [u[0] * f + o[0], u[1] * f + o[1]])
+    }
 }
 
 /// The colour of the three channels' noise values `g` on the structured models' ramp colour

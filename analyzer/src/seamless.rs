@@ -330,18 +330,7 @@ mod tests {
 
     /// Params analysed from a small synthetic photo (hash noise).
     fn some_params() -> Params {
-        let (w, h) = (64u32, 64u32);
-        let pixels = (0..w * h)
-            .map(|i| [0, 1, 2].map(|c| crate::rng::uniform(3, c, i) as f32 * 0.5 + 0.25))
-            .collect();
-        let photo = crate::input::Photo {
-            width: w,
-            height: h,
-            pixels,
-        };
-        crate::analyze::analyze_photo(&photo, &crate::analyze::Options::default())
-            .unwrap()
-            .params
+        crate::analyze::hash_noise_params(64, 3)
     }
 
     #[test]

@@ -41,7 +41,7 @@ use crate::params::{
     Colour, FORMAT, Histogram, Model, NoiseModel, Params, StructuredModel, Transform,
 };
 use crate::pattern::{Pattern, PatternKind, RampStop, pattern, ramp_rows};
-use crate::render::Prepared;
+use crate::render::{Fields, Prepared, render_with_fields};
 use crate::two_tone::two_tone;
 
 mod tone;
@@ -169,7 +169,7 @@ pub fn fit_structured(
     opts: &Options,
     swapped: bool,
 ) -> Analysis {
-    use crate::render::{View, render};
+    use crate::render::View;
     let tile = Tile::new_2d(opts.seed);
     let with_tone = |mut a: Analysis| {
         let tone = fit_tone(photo, &a.params);
@@ -202,39 +202,53 @@ pub fn fit_structured(
     let reference = crate::evaluate::Reference::of(photo);
     // One residual amplitude (`alpha`) and match (`matched`) of a fitted candidate: its score
     // and the analysis without its selection tone curve.
-    let score =
-        |base: &Analysis, gains: [f64; 3], balance: &Balance, (alpha, matched): (f64, bool)| {
-            let mut a = base.clone();
-            if let Model::Structured(m) = &mut a.params.model {
-                let grow = gains.map(|g| g.max(1.0).powf(alpha));
-                gaussian_where_grown(&mut m.residual, grow);
-                scale_residual(&mut m.residual, grow);
-                balance.contract_ramp(&mut m.ramp, grow);
+    // Every render of one candidate below shares its pattern and seed: its fields are drawn
+    // once ([`Fields`]) and each render only colours them.
+    let fields_of =
+        |base: &Analysis| Fields::new(&base.params, photo.width, photo.height, &View::default());
+    let score = |base: &Analysis,
+                 fields: &Fields,
+                 gains: [f64; 3],
+                 balance: &Balance,
+                 (alpha, matched): (f64, bool)| {
+        let mut a = base.clone();
+        if let Model::Structured(m) = &mut a.params.model {
+            let grow = gains.map(|g| g.max(1.0).powf(alpha));
+            gaussian_where_grown(&mut m.residual, grow);
+            scale_residual(&mut m.residual, grow);
+            balance.contract_ramp(&mut m.ramp, grow);
+        }
+        if matched {
+            for _ in 0..SPECTRUM_MATCH_ROUNDS {
+                match_spectrum(photo, &mut a.params, opts, fields);
             }
-            if matched {
-                for _ in 0..SPECTRUM_MATCH_ROUNDS {
-                    match_spectrum(photo, &mut a.params, opts);
-                }
-            }
-            // Scored with a tone curve fitted to the user's seed alone (the chosen candidate's
-            // curve is fitted again on [`TONE_SEEDS`] renders below). The tone fit's render of
-            // that seed is the scored image before its curve (the curve is applied per pixel,
-            // last): mapped here instead of rendered again, bit for bit the same image (tested).
-            let untoned = a.clone();
-            let (tone, shown) = fit_tone_rendered(photo, &a.params, SELECTION_TONE_SEEDS);
-            if let Model::Structured(m) = &mut a.params.model {
-                m.tone = tone;
-            }
-            let img = match shown {
-                Some(pixels) => with_tone_applied(&a.params, photo.width, photo.height, pixels),
-                None => render(&a.params, photo.width, photo.height, &View::default()).to_photo(),
-            };
-            let d = reference.distances(db, &img);
-            let s = predicted_ratio(d.spectrum_db, unit.spectrum_db.max(0.1))
-                + predicted_ratio(d.colour, unit.colour.max(1e-3))
-                + predicted_ratio(d.structure, unit.structure.max(0.1));
-            (s, untoned)
+        }
+        // Scored with a tone curve fitted to the user's seed alone (the chosen candidate's
+        // curve is fitted again on [`TONE_SEEDS`] renders below). The tone fit's render of
+        // that seed is the scored image before its curve (the curve is applied per pixel,
+        // last): mapped here instead of rendered again, bit for bit the same image (tested).
+        let untoned = a.clone();
+        let (tone, shown) = fit_tone_rendered(photo, &a.params, SELECTION_TONE_SEEDS, Some(fields));
+        if let Model::Structured(m) = &mut a.params.model {
+            m.tone = tone;
+        }
+        let img = match shown {
+            Some(pixels) => with_tone_applied(&a.params, photo.width, photo.height, pixels),
+            None => render_with_fields(
+                &a.params,
+                photo.width,
+                photo.height,
+                &View::default(),
+                fields,
+            )
+            .to_photo(),
         };
+        let d = reference.distances(db, &img);
+        let s = predicted_ratio(d.spectrum_db, unit.spectrum_db.max(0.1))
+            + predicted_ratio(d.colour, unit.colour.max(1e-3))
+            + predicted_ratio(d.structure, unit.structure.max(0.1));
+        (s, untoned)
+    };
     let grows = |gains: &[f64; 3]| gains.iter().any(|&g| g > 1.0);
     // The refined pattern (the first candidate): every residual amplitude and match; nothing to
     // grow: the fit as it is (once, unmatched) competes. Scored in parallel on native, kept in
@@ -253,7 +267,9 @@ pub fn fit_structured(
     };
     let mut best: Option<(f64, Analysis)> = None;
     let mut chosen = (0.0, false);
-    let first = crate::parallel::map_in_order(&combos, |&c| score(&base, gains, &balance, c));
+    let fields = fields_of(&base);
+    let first =
+        crate::parallel::map_in_order(&combos, |&c| score(&base, &fields, gains, &balance, c));
     for (&c, (s, a)) in combos.iter().zip(first) {
         if best.as_ref().is_none_or(|(b, _)| s < *b) {
             best = Some((s, a));
@@ -264,7 +280,7 @@ pub fn fit_structured(
     let rest = crate::parallel::map_in_order(&candidates[1..], |pat| {
         let (base, gains, balance) = fit_structured_gains(photo, pat, opts, swapped, &tile);
         let c = if grows(&gains) { chosen } else { (0.0, false) };
-        score(&base, gains, &balance, c)
+        score(&base, &fields_of(&base), gains, &balance, c)
     });
     for (s, a) in rest {
         if best.as_ref().is_none_or(|(b, _)| s < *b) {
@@ -392,8 +408,8 @@ const SPECTRUM_MATCH_ROUNDS: usize = 2;
 /// worse colour ratios (rock wall 1.29 → 1.30, planks 1.11 → 1.17, old wood 1.22 → 1.27).
 /// Each `α` is tried with and without the match, and step 6's score chooses: always
 /// matching gained more spectrum (rock wall 1.16 → 1.00) but cost colour (1.12 → 1.29).
-fn match_spectrum(photo: &Photo, params: &mut Params, opts: &Options) {
-    use crate::render::{View, render};
+fn match_spectrum(photo: &Photo, params: &mut Params, opts: &Options, fields: &Fields) {
+    use crate::render::View;
     let (w, h) = (photo.width as usize, photo.height as usize);
     let nb = crate::spectrum::num_bands(w, h);
     let colour = params.colour;
@@ -407,13 +423,16 @@ fn match_spectrum(photo: &Photo, params: &mut Params, opts: &Options) {
         .unwrap_or(0);
     let power =
         |img: &Photo| channel_powers(&colour, c, &mut img.pixels.iter().copied(), w, h, opts);
-    let full = render(params, photo.width, photo.height, &View::default()).to_photo();
+    let render = |p: &Params| {
+        render_with_fields(p, photo.width, photo.height, &View::default(), fields).to_photo()
+    };
+    let full = render(params);
     let mut bare = params.clone();
     if let Model::Structured(m) = &mut bare.model {
         m.residual.weights.iter_mut().for_each(|w| w.fill(0.0));
         m.residual.histogram.enabled = false;
     }
-    let ramp_only = render(&bare, photo.width, photo.height, &View::default()).to_photo();
+    let ramp_only = render(&bare);
     let (p_photo, p_render, p_ramp) = (power(photo), power(&full), power(&ramp_only));
     let Model::Structured(m) = &mut params.model else {
         return;
@@ -988,7 +1007,7 @@ mod tests {
         }
         with.validate().unwrap();
         // The tone fit's own render of the seed, through the curve, is the render with it.
-        let (_, shown) = fit_tone_rendered(&photo, &p, TONE_SEEDS);
+        let (_, shown) = fit_tone_rendered(&photo, &p, TONE_SEEDS, None);
         let mapped = with_tone_applied(&with, 128, 128, shown.expect("rendered"));
         assert_eq!(mapped, render(&with, 128, 128, &View::default()).to_photo());
         for c in 0..3 {

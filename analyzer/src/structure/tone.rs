@@ -3,7 +3,7 @@
 
 use crate::input::Photo;
 use crate::params::{Model, Params};
-use crate::render::Prepared;
+use crate::render::{Fields, Prepared};
 
 /// Knots per channel of a fitted output tone curve.
 pub const TONE_KNOTS: usize = 33;
@@ -37,18 +37,20 @@ const TONE_STRENGTHS: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 /// ramp fits that seed's render 4× closer to the photo than other seeds' (old wood: colour
 /// distance 0.006 against 0.024–0.030), so the others pull the curve their way.
 pub fn fit_tone(photo: &Photo, params: &Params) -> Option<crate::params::Tone> {
-    fit_tone_rendered(photo, params, TONE_SEEDS).0
+    fit_tone_rendered(photo, params, TONE_SEEDS, None).0
 }
 
 /// [`fit_tone`] with the renders of `seeds` seeds pooled, and the render of `params.seed` it
-/// made (without a curve; `None` where it rendered nothing).
+/// made (without a curve; `None` where it rendered nothing). Renders that `fields` fit are
+/// coloured from them.
 pub(super) fn fit_tone_rendered(
     photo: &Photo,
     params: &Params,
     seeds: u32,
+    fields: Option<&Fields>,
 ) -> (Option<crate::params::Tone>, Option<Vec<[f32; 3]>>) {
     use crate::evaluate::ColourQuantiles;
-    use crate::render::{View, render};
+    use crate::render::{View, render, render_with_fields};
     let n = photo.pixels.len();
     if n < 64 || !matches!(params.model, Model::Structured(_)) {
         return (None, None);
@@ -59,7 +61,11 @@ pub(super) fn fit_tone_rendered(
                 seed: params.seed.wrapping_add(k),
                 ..params.clone()
             };
-            render(&p, photo.width, photo.height, &View::default()).pixels
+            match fields {
+                Some(f) => render_with_fields(&p, photo.width, photo.height, &View::default(), f),
+                None => render(&p, photo.width, photo.height, &View::default()),
+            }
+            .pixels
         })
         .collect();
     let mut sorted_photo: [Vec<f32>; 3] = Default::default();
