@@ -279,7 +279,7 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
 
 /// The noise model of a `side²` synthetic photo of hash noise (`seed`), for tests.
 #[cfg(test)]
-pub(crate) fn hash_noise_params(side: u32, seed: u32) -> crate::params::Params {
+pub(crate) fn hash_noise_params(side: u32, seed: u32) -> Params {
     let pixels = (0..side * side)
         .map(|i| [0, 1, 2].map(|c| crate::rng::uniform(seed, c, i) as f32 * 0.5 + 0.25))
         .collect();
