@@ -72,9 +72,10 @@ dbReady.catch(() => {}); // reported per photo, below
 // helped, helpers }.
 // Refinement runs one model family per queued step, so a new photo, a crop, the plots'
 // statistics or Cancel get in between steps; helper workers (refiner.js) refine other families
-// at the same time. `todo`: families nobody has started (this worker takes from the front, the
-// helpers from the back); `inflight`: families at the helpers; `waiting`: this worker has
-// nothing left to refine and waits for them.
+// at the same time. The families come in rounds (`pending()`: the first three by retrieval,
+// then those that could still reach the top three); `todo`: families of the round nobody has
+// started (this worker takes from the front, the helpers from the back); `inflight`: families
+// at the helpers; `waiting`: this worker has nothing left to refine and waits for them.
 let suggestion = null;
 let tokens = 0;
 // The refinement's time budget (milliseconds from the end of retrieval; 0: none), set by the
@@ -197,7 +198,7 @@ async function startSuggestions(id, crop, seed) {
   }
   const s = {
     job, id, token: ++tokens, cancelled: false, timedOut: false, t0: performance.now(),
-    todo: Array.from({ length: job.steps() }, (_, i) => i), inflight: 0, finished: false,
+    todo: Array.from(job.pending()), inflight: 0, finished: false,
     waiting: false, helped: 0, helpers: 0,
   };
   suggestion = s;
@@ -226,8 +227,16 @@ function scheduleStep(s) {
   }, 0);
 }
 
+// The next round of families, once every family of the current one is back; idle helpers take
+// their share at once.
+function nextRound(s) {
+  s.todo = Array.from(s.job.pending());
+  if (s.helpers > 0) for (const h of helperPool()) dispatch(s, h);
+}
+
 function suggestStep(s) {
   if (suggestion !== s || s.finished) return; // superseded (and freed), or already ranked
+  if (!s.cancelled && s.todo.length === 0 && s.inflight === 0) nextRound(s);
   if (!s.cancelled && s.todo.length > 0) {
     const family = s.todo.shift();
     s.job.setRefined(family, s.job.refine(family));

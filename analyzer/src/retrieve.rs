@@ -60,6 +60,41 @@ pub const OCCAM: f32 = 0.2;
 /// kurtosis, edge sparsity, bimodality (31/100 held out), lattice, coherence.
 pub const DARK_NETWORK_SKEWNESS: f32 = -0.726;
 
+/// The ranks that leaving a family unrefined must not change: the first model and the rest of
+/// the top three that the app lists.
+pub const RANKS_KEPT: usize = 3;
+
+/// The least that refinement has left of each family's retrieval distance (refined ÷
+/// retrieval distance, the minimum over the families' refinements on every patch of the
+/// development set, rounded down): a family whose retrieval distance times this is above the
+/// [`RANKS_KEPT`]-th best refined distance is not refined ([`Suggester::pending`]).
+///
+/// Ours, not Bourque & Dudek's (who refine every shader of their catalogue's best matches):
+/// refinement is most of an analysis' time, and most families cannot catch up. Measured on the
+/// development set (208 patches, `tools/refinement_reach_cv.py` on the per-family distances of
+/// `analyzer/examples/refinement_reach.rs`): with each fold's table taken from the other three
+/// folds, the first model and the ordered top three were those of refining every family on
+/// 208 of 208 held-out patches, with 6.2 of 9 families refined (the rounds below); taking the
+/// 1 % quantile instead of the minimum refined 5.4 and kept 208 and 208 as well (not used: the
+/// minimum is the bound that assumes the least). On the shipped samples (not used to make the
+/// table): the whole photos 20 of 20 and 20 of 20 (brick first on the brick sample), their
+/// quadrants 66 of 66 and 65 of 66 (gravel's third model). Turbulence reaches furthest (its
+/// contrast and roughness are retrieved coarsely); refining only the first few families by
+/// retrieval distance instead kept the first model on 204 of 208 with six of nine refined.
+pub fn refinement_reach(kind: PatternKind) -> f32 {
+    match kind {
+        PatternKind::Perlin => 0.74,
+        PatternKind::Turbulence => 0.39,
+        PatternKind::Ridged => 0.71,
+        PatternKind::Grid => 0.67,
+        PatternKind::Brick => 0.75,
+        PatternKind::Cells => 0.76,
+        PatternKind::Planks => 0.62,
+        PatternKind::WoodLines => 0.70,
+        PatternKind::Rings => 0.53,
+    }
+}
+
 /// Longer side of the photo copy the candidates are fitted and scored on.
 pub const RANK_SIZE: u32 = 256;
 
@@ -102,6 +137,10 @@ pub struct Suggestion {
     pub retrieval_distance: f32,
     /// The same after refinement (`None`: not refined).
     pub refined_distance: Option<f32>,
+    /// Not refined because refining it could not have changed the top [`RANKS_KEPT`]
+    /// ([`Suggester::pending`]); `false` for a family not refined because the refinement was
+    /// stopped.
+    pub skipped: bool,
     /// The candidate fitted on the reduced photo (for thumbnails).
     pub preview: Params,
 }
@@ -186,7 +225,7 @@ pub fn suggest_with(
     let total = s.evaluations();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let stop = std::sync::atomic::AtomicBool::new(false);
-    let one = |i: usize| {
+    let one = |s: &Suggester, i: usize| {
         s.refine_family(db, i, &mut |_, _| {
             use std::sync::atomic::Ordering::Relaxed;
             if stop.load(Relaxed) {
@@ -200,23 +239,30 @@ pub fn suggest_with(
             true
         })
     };
-    #[cfg(not(target_arch = "wasm32"))]
-    let refined: Vec<Refined> = {
-        use rayon::prelude::*;
-        (0..s.steps()).into_par_iter().map(one).collect()
-    };
-    #[cfg(target_arch = "wasm32")]
-    let refined: Vec<Refined> = (0..s.steps()).map(one).collect();
-    for (i, r) in refined.into_iter().enumerate() {
-        s.set_refined(i, r);
+    // Round by round ([`Suggester::pending`]), each round's families in parallel on native.
+    loop {
+        let round = s.pending();
+        if round.is_empty() || stop.load(std::sync::atomic::Ordering::Relaxed) {
+            break;
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        let refined: Vec<Refined> = {
+            use rayon::prelude::*;
+            round.par_iter().map(|&i| one(&s, i)).collect()
+        };
+        #[cfg(target_arch = "wasm32")]
+        let refined: Vec<Refined> = round.iter().map(|&i| one(&s, i)).collect();
+        for (&i, r) in round.iter().zip(refined) {
+            s.set_refined(i, r);
+        }
     }
     s.suggestions(db)
 }
 
 /// The automatic model choice in steps, for callers that must stay responsive (the browser's
 /// worker): [`Suggester::new`] does the retrieval (fast), each [`Suggester::step`] refines one
-/// family, [`Suggester::suggestions`] ranks what there is. [`suggest_with`] is the same, with
-/// the families refined in parallel on native.
+/// family of those [`Suggester::pending`] lists, [`Suggester::suggestions`] ranks what there
+/// is. [`suggest_with`] is the same, with each round's families refined in parallel on native.
 #[derive(Clone, Debug)]
 pub struct Suggester {
     small: Photo,
@@ -277,9 +323,20 @@ impl Suggester {
         }
     }
 
-    /// Families to refine (the first this many by retrieval distance).
+    /// Families that may be refined (the first this many by retrieval distance; the bound of
+    /// [`Suggester::pending`] leaves some of them out).
     pub fn steps(&self) -> usize {
         self.refinement.families.min(self.starts.len())
+    }
+
+    /// Family `i` (in retrieval order).
+    pub fn family(&self, i: usize) -> PatternKind {
+        self.starts[i][0].pattern.kind
+    }
+
+    /// Family `i`'s retrieval distance: its best database entry's.
+    pub fn retrieval_distance(&self, i: usize) -> f32 {
+        self.starts[i][0].distance
     }
 
     /// Families refined so far.
@@ -289,7 +346,49 @@ impl Suggester {
 
     /// The next family to refine (in retrieval order), if any.
     pub fn next_family(&self) -> Option<usize> {
-        (0..self.steps()).find(|&i| !self.is_refined[i])
+        self.pending().first().copied()
+    }
+
+    /// The families of the current round still to refine, in retrieval order (empty: the
+    /// refinement is complete). The first round is the first [`RANKS_KEPT`] families by
+    /// retrieval distance; each next round, every family not yet in a round whose retrieval
+    /// distance times its [`refinement_reach`] is at most the [`RANKS_KEPT`]-th best refined
+    /// distance of the rounds so far (a family that could still enter the top three); none
+    /// such ends it. A pure function of the rounds' refined distances: the same rounds
+    /// whatever the order in which their families were refined (here or by helper workers).
+    pub fn pending(&self) -> Vec<usize> {
+        let steps = self.steps();
+        let mut in_rounds = vec![false; steps];
+        let mut round: Vec<usize> = (0..steps.min(RANKS_KEPT)).collect();
+        while !round.is_empty() {
+            let left: Vec<usize> = round
+                .iter()
+                .copied()
+                .filter(|&i| !self.is_refined[i])
+                .collect();
+            if !left.is_empty() {
+                return left;
+            }
+            for &i in &round {
+                in_rounds[i] = true;
+            }
+            let mut refined: Vec<f32> = (0..steps)
+                .filter(|&i| in_rounds[i])
+                .filter_map(|i| self.refined[i].1)
+                .collect();
+            refined.sort_by(f32::total_cmp);
+            let bound = refined
+                .get(RANKS_KEPT - 1)
+                .copied()
+                .unwrap_or(f32::INFINITY);
+            round = (0..steps)
+                .filter(|&i| {
+                    !in_rounds[i]
+                        && self.retrieval_distance(i) * refinement_reach(self.family(i)) <= bound
+                })
+                .collect();
+        }
+        round
     }
 
     /// Stores family `i`'s refinement, computed by [`Suggester::refine_family`] here or on
@@ -384,9 +483,11 @@ impl Suggester {
             score: 0.0,
             retrieval_distance: 0.0,
             refined_distance: None,
+            skipped: false,
             preview: noise,
         });
         // Each family fitted and rendered: independent, so in parallel on native.
+        let complete = self.pending().is_empty();
         let families: Vec<(&Vec<Match>, &Refined)> =
             self.starts.iter().zip(&self.refined).collect();
         let fits = crate::parallel::map_in_order(&families, |&(_, (p, _, swapped))| {
@@ -408,6 +509,7 @@ impl Suggester {
                 score: refined_distance.unwrap_or(m.distance) + margin,
                 retrieval_distance: m.distance,
                 refined_distance: *refined_distance,
+                skipped: complete && refined_distance.is_none(),
                 preview: fitted,
             });
         }

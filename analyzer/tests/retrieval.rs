@@ -182,3 +182,42 @@ fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
     let ranked = suggest_with(db, &gravel, &opts, Refinement::default(), &|_, _| true);
     assert_eq!(ranked[0].name, "noise");
 }
+
+/// The refinement's bound: the first three families by retrieval distance are refined; every
+/// family left unrefined is one whose retrieval distance times its family's refinement reach is
+/// above the third-best refined distance (it could not have entered the top three), and is
+/// marked skipped; the top three are refined families.
+#[test]
+fn the_refinement_skips_only_families_that_cannot_reach_the_top_three() {
+    use proctex::retrieve::{RANKS_KEPT, Refinement, refinement_reach, suggest_with};
+    let db = Db::shipped();
+    let opts = Options::default();
+    let photo = common::dev_quadrant("megaglest_stonebricks_256.png");
+    let ranked = suggest_with(db, &photo, &opts, Refinement::default(), &|_, _| true);
+    let families: Vec<_> = ranked.iter().filter(|s| s.pattern.is_some()).collect();
+    let mut refined: Vec<f32> = families.iter().filter_map(|s| s.refined_distance).collect();
+    refined.sort_by(f32::total_cmp);
+    let bound = refined[RANKS_KEPT - 1];
+    let mut by_retrieval = families.clone();
+    by_retrieval.sort_by(|a, b| a.retrieval_distance.total_cmp(&b.retrieval_distance));
+    for s in &by_retrieval[..RANKS_KEPT] {
+        assert!(s.refined_distance.is_some(), "{} not refined", s.name);
+    }
+    for s in &families {
+        let kind = s.pattern.as_ref().unwrap().0.kind;
+        assert_eq!(s.skipped, s.refined_distance.is_none(), "{}", s.name);
+        if s.skipped {
+            assert!(
+                s.retrieval_distance * refinement_reach(kind) > bound,
+                "{}",
+                s.name
+            );
+        }
+    }
+    assert!(
+        families[..RANKS_KEPT]
+            .iter()
+            .all(|s| s.refined_distance.is_some())
+    );
+    println!("{} of {} families refined", refined.len(), families.len());
+}

@@ -751,6 +751,8 @@ impl ProctexApp {
                     tip += &format!("\nstructure distance: retrieval {r:.3}");
                     if let Some(f) = row.refined {
                         tip += &format!(" → refined {f:.3}");
+                    } else if row.skipped {
+                        tip += " (not refined: it could not reach the top three)";
                     }
                 }
                 tip += if adopted == Some(i) {

@@ -162,6 +162,10 @@ pub struct SuggestionRow {
     pub retrieval: Option<f32>,
     /// The same after refinement, when refined.
     pub refined: Option<f32>,
+    /// Not refined because refining it could not have changed the top three (see
+    /// `retrieve::Suggester::pending`).
+    #[serde(default)]
+    pub skipped: bool,
 }
 
 /// The automatic model choice of one photo (or crop), run a family at a time so that the
@@ -222,6 +226,12 @@ impl SuggestJob {
         (self.suggester.done(), self.suggester.steps())
     }
 
+    /// The families of the current refinement round still to refine (empty: complete; see
+    /// `retrieve::Suggester::pending`).
+    pub fn pending(&self) -> Vec<usize> {
+        self.suggester.pending()
+    }
+
     /// Refines the next family; returns whether any remain.
     pub fn step(&mut self, db: &Db) -> bool {
         self.suggester.step(db, &mut |_, _| true)
@@ -259,6 +269,7 @@ impl SuggestJob {
                 distance: s.distance,
                 retrieval: s.pattern.as_ref().map(|_| s.retrieval_distance),
                 refined: s.refined_distance,
+                skipped: s.skipped,
             })
             .collect()
     }
@@ -461,8 +472,13 @@ mod tests {
         let steps = proctex::pattern::PatternKind::ALL.len();
         assert_eq!(job.progress(), (0, steps));
         while job.step(db) {}
-        assert_eq!(job.progress(), (steps, steps));
+        assert!(job.pending().is_empty());
         let rows = job.rank(db);
+        // Every family refined but those the bound skipped.
+        assert_eq!(
+            job.progress().0 + rows.iter().filter(|r| r.skipped).count(),
+            steps
+        );
         let opts = Options {
             seed: 1,
             ..Options::default()
@@ -471,7 +487,10 @@ mod tests {
         let direct = proctex::retrieve::suggest(db, &prepare_photo(&photo, &opts).unwrap(), &opts);
         assert_eq!(rows.len(), direct.len());
         for (r, d) in rows.iter().zip(&direct) {
-            assert_eq!((r.name.as_str(), r.score), (d.name, d.score));
+            assert_eq!(
+                (r.name.as_str(), r.score, r.skipped),
+                (d.name, d.score, d.skipped)
+            );
         }
         let side = THUMB_SIDE as usize;
         assert_eq!(job.thumbnails().len(), rows.len() * side * side * 4);
@@ -496,20 +515,29 @@ mod tests {
         let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
         let (px, pw, ph) = job.prepared();
         let helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
-        let steps = job.progress().1;
-        for i in (0..steps).rev() {
-            let json = if i % 2 == 0 {
-                helper.refine(db, i)
-            } else {
-                job.refine(db, i)
-            };
-            job.set_refined(i, &json).unwrap();
+        // Round by round, each round's families in reverse order, alternately here and there.
+        loop {
+            let round = job.pending();
+            if round.is_empty() {
+                break;
+            }
+            for &i in round.iter().rev() {
+                let json = if i % 2 == 0 {
+                    helper.refine(db, i)
+                } else {
+                    job.refine(db, i)
+                };
+                job.set_refined(i, &json).unwrap();
+            }
         }
-        assert_eq!(job.progress(), (steps, steps));
+        assert_eq!(job.progress(), stepped.progress());
         let (a, b) = (stepped.rank(db), job.rank(db));
         assert_eq!(a.len(), b.len());
         for (x, y) in a.iter().zip(&b) {
-            assert_eq!((&x.name, x.score, x.refined), (&y.name, y.score, y.refined));
+            assert_eq!(
+                (&x.name, x.score, x.refined, x.skipped),
+                (&y.name, y.score, y.refined, y.skipped)
+            );
         }
         assert!(job.set_refined(0, "not json").is_err());
         assert!(Refiner::new(db, &px[1..], pw, ph, 1).is_err());

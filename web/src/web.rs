@@ -132,9 +132,15 @@ impl Suggestions {
         self.job.progress().0
     }
 
-    /// Families to refine.
+    /// Families that may be refined (an upper bound: the refinement's bound skips some).
     pub fn steps(&self) -> usize {
         self.job.progress().1
+    }
+
+    /// The families of the current refinement round still to refine (empty: the refinement
+    /// is complete). Refine them (here or in helpers), store them, then ask again.
+    pub fn pending(&self) -> Vec<u32> {
+        self.job.pending().into_iter().map(|i| i as u32).collect()
     }
 
     /// Refines the next family; returns whether any remain.
