@@ -188,9 +188,11 @@ fn retrieval(single: &rayon::ThreadPool, reps: usize) {
             .expect("families");
         let r = Refinement::default();
         println!(
-            "refinement, {name}: {} families × {} evaluations ({} starts) + ranking {:.0} ms on {} \
-             threads ({:.0}× retrieval); structure distance lowered by {:.2} on average, {:.2} \
-             at most; nearest family {} {:.2} → {:.2}; first: {}",
+            "refinement, {name}: {} of {} families refined (the others skipped by the bound) × {} \
+             evaluations ({} starts) + ranking {:.0} ms on {} threads ({:.0}× retrieval); \
+             structure distance lowered by {:.2} on average, {:.2} at most; nearest family {} \
+             {:.2} → {:.2}; first: {}",
+            fams.iter().filter(|s| s.refined_distance.is_some()).count(),
             fams.len(),
             r.evaluations,
             r.starts,
