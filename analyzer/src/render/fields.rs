@@ -14,13 +14,12 @@ use crate::pattern::{pattern, ramp};
 pub struct Fields {
     /// What the values depend on ([`fields_key`]).
     key: Vec<u32>,
-    /// Per pixel, the pattern's structure value (empty for the noise model).
-    structure: Vec<f32>,
     /// Bands per channel.
     bands: usize,
-    /// Per pixel, per channel, per band: the band's noise value (0 where the band is faded
+    /// Per pixel, [`Fields::stride`] values: the pattern's structure value (0 for the noise
+    /// model), then per channel, per band, the band's noise value (0 where the band is faded
     /// out at this view's footprint, which the colouring then skips).
-    noise: Vec<f32>,
+    values: Vec<f32>,
 }
 
 impl Fields {
@@ -31,66 +30,46 @@ impl Fields {
         let tile = tile_for(params);
         let log2_fp = (view.pixel_size * prep.inv_scale).log2();
         let bands = prep.bands as usize;
+        let stride = 1 + 3 * bands;
         let structured = prep.pattern[0] != 0;
         let faded: Vec<bool> = (0..bands)
             .map(|j| crate::noise::band_fade(j as u32, log2_fp) == 0.0)
             .collect();
-        let (w, h) = (width as usize, height as usize);
-        let mut structure = vec![0.0f32; if structured { w * h } else { 0 }];
-        let mut noise = vec![0.0f32; w * h * 3 * bands];
-        let row = |y: usize, s_row: &mut [f32], n_row: &mut [f32]| {
+        let row = |y: usize, out: &mut [f32]| {
             let wy = view.origin[1] + (y as f32 + 0.5) * view.pixel_size;
-            for x in 0..w {
+            for (x, px) in out.chunks_exact_mut(stride).enumerate() {
                 let wx = view.origin[0] + (x as f32 + 0.5) * view.pixel_size;
                 let u = prep.texel([wx, wy, view.z]);
                 if structured {
-                    s_row[x] = pattern(&prep, &tile, u, log2_fp);
+                    px[0] = pattern(&prep, &tile, u, log2_fp);
                 }
                 for c in 0..3 {
-                    for j in 0..bands {
-                        if !faded[j] {
-                            n_row[(x * 3 + c) * bands + j] = band_noise(&prep, &tile, c, j, u);
-                        }
+                    for j in (0..bands).filter(|&j| !faded[j]) {
+                        px[1 + c * bands + j] = band_noise(&prep, &tile, c, j, u);
                     }
                 }
             }
         };
-        if w > 0 && h > 0 {
-            let s_width = if structured { w } else { 0 };
+        let mut values = vec![0.0f32; width as usize * height as usize * stride];
+        if width > 0 {
+            let line = width as usize * stride;
             #[cfg(not(target_arch = "wasm32"))]
             {
                 use rayon::prelude::*;
-                let rows: Vec<(&mut [f32], &mut [f32])> = if structured {
-                    structure
-                        .chunks_mut(s_width)
-                        .zip(noise.chunks_mut(w * 3 * bands.max(1)))
-                        .collect()
-                } else {
-                    noise
-                        .chunks_mut(w * 3 * bands.max(1))
-                        .map(|n| (&mut [][..], n))
-                        .collect()
-                };
-                rows.into_par_iter()
+                values
+                    .par_chunks_mut(line)
                     .enumerate()
-                    .for_each(|(y, (s, n))| row(y, s, n));
+                    .for_each(|(y, out)| row(y, out));
             }
             #[cfg(target_arch = "wasm32")]
-            for y in 0..h {
-                let s = if structured {
-                    &mut structure[y * s_width..(y + 1) * s_width]
-                } else {
-                    &mut []
-                };
-                let n_width = w * 3 * bands;
-                row(y, s, &mut noise[y * n_width..(y + 1) * n_width]);
+            for (y, out) in values.chunks_mut(line).enumerate() {
+                row(y, out);
             }
         }
         Fields {
             key: fields_key(&prep, width, height, view),
-            structure,
             bands,
-            noise,
+            values,
         }
     }
 
@@ -150,19 +129,17 @@ pub fn render_with_fields(
     let log2_fp = (view.pixel_size * prep.inv_scale).log2();
     let bands = fields.bands;
     let structured = prep.pattern[0] != 0;
-    let pixels = (0..width as usize * height as usize)
-        .map(|i| {
+    let pixels = fields
+        .values
+        .chunks_exact(1 + 3 * bands)
+        .map(|px| {
             let base = if structured {
-                ramp(&prep, fields.structure[i])
+                ramp(&prep, px[0])
             } else {
                 prep.mean
             };
-            let at = |c: usize, j: usize| fields.noise[(i * 3 + c) * bands + j];
-            colour(
-                &prep,
-                [0, 1, 2].map(|c| band_sum(&prep, c, log2_fp, |j| at(c, j))),
-                base,
-            )
+            let noise = |c: usize| band_sum(&prep, c, log2_fp, |j| px[1 + c * bands + j]);
+            colour(&prep, [0, 1, 2].map(noise), base)
         })
         .collect();
     Image {
