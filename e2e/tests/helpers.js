@@ -138,6 +138,10 @@ async function suggestionsFor(page, sample) {
     await page.evaluate(() => window.proctex.lastSuggestions()?.count ?? 0),
   ];
   await page.evaluate((n) => window.proctex.loadSample(n), sample);
+  // The worker's ranking first, without waking the app: each frame of the software adapter
+  // costs CPU that the worker and its helpers would otherwise have.
+  await page.waitForFunction((n) => (window.proctex.lastSuggestions()?.count ?? 0) > n,
+    before[1], { polling: 200, timeout: 120_000 });
   // This photo's ranking: a ranking received after its analysis (not the previous photo's).
   await page.waitForFunction(([k, n]) => {
     window.proctex.requestRepaint();

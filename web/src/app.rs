@@ -699,8 +699,9 @@ impl ProctexApp {
                     host("cancelSuggestions", &[]);
                 }
             });
-            ui.ctx()
-                .request_repaint_after(std::time::Duration::from_millis(100));
+            // No timed repaint: each progress message from the worker wakes the app. Without a
+            // GPU (software WebGPU) a frame costs ~170 ms of CPU, so a 10 Hz repaint took one
+            // of this machine's two cores from the worker and its helper while they refined.
         } else if self.suggest.on_request {
             ui.horizontal_wrapped(|ui| {
                 let r = ui.button("Suggest models").on_hover_text(
@@ -1071,14 +1072,14 @@ impl ProctexApp {
             let elapsed = now_ms() - since;
             // Anything that takes longer than ~200 ms gets a visible progress indicator.
             if elapsed > 200.0 {
-                ui.horizontal(|ui| {
-                    let r = ui.add(egui::Spinner::new());
-                    ui.label(format!("{what}… {:.1} s", elapsed / 1000.0));
-                    self.record("progress", &r);
-                });
+                let r = ui.label(format!("{what}… {:.1} s", elapsed / 1000.0));
+                self.record("progress", &r);
             }
+            // The elapsed time four times a second, not an animated spinner (which repaints
+            // every frame): without a GPU each frame costs the worker CPU time (see the
+            // suggestions' progress).
             ui.ctx()
-                .request_repaint_after(std::time::Duration::from_millis(100));
+                .request_repaint_after(std::time::Duration::from_millis(250));
         } else if let (Some(photo), Some(ms)) = (&self.photo, self.analysis_ms) {
             let r = ui.label(format!("{} — analysed in {ms:.0} ms", photo.name));
             self.record("status", &r);
