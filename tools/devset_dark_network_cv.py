@@ -55,13 +55,19 @@ def choose(pt, threshold):
     return "noise" if pt["noise_first"] else pt["best"]
 
 
-def counts(pts, threshold):
+def tally(pts, chooser):
+    """(structured labelled, structured, stochastic served, stochastic) when `chooser(pt)` names
+    each patch's model."""
     s = [pt for pt in pts if pt["category"] == "structured"]
     t = [pt for pt in pts if pt["category"] == "stochastic"]
-    lab = sum(choose(pt, threshold) in pt["labels"] for pt in s)
-    served = sum(1 for pt in t if (c := choose(pt, threshold)) == "noise"
+    lab = sum(chooser(pt) in pt["labels"] for pt in s)
+    served = sum(1 for pt in t if (c := chooser(pt)) == "noise"
                  or (c == pt["chosen"] and pt["family_ok"]))
     return lab, len(s), served, len(t)
+
+
+def counts(pts, threshold):
+    return tally(pts, lambda pt: choose(pt, threshold))
 
 
 def pick(pts):

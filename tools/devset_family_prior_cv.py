@@ -21,33 +21,28 @@ Usage: tools/devset_family_prior_cv.py RUN.jsonl
 import json
 import sys
 
-from devset_occam_cv import fold_of, patch_overall
+from devset_dark_network_cv import CUE_NAMES, OCCAM, tally
+from devset_occam_cv import fold_of
+from devset_occam_cv import patches as occam_patches
 
-OCCAM = 0.2
-DARK_NETWORK_SKEWNESS = -0.726
-SKEWNESS_CUE = 7  # index of `skewness` in cues::CUE_NAMES
+DARK_NETWORK_SKEWNESS = -0.726  # retrieve::DARK_NETWORK_SKEWNESS
 GRID = [round(0.1 * i, 1) for i in range(-15, 6)]
 LATTICES = ["brick", "grid", "cells", "planks"]
 
 
 def patches(photos):
+    """The OCCAM script's patches, each with its dark-network flag and every family's
+    (structure distance, texture distance)."""
     out = []
+    pts = iter(occam_patches(photos, OCCAM))
     for p in photos:
-        e = p["entry"]
-        for i, c in enumerate(p["choices"]):
-            rank = c["ranking"]
-            noise = next(r for r in rank if r["name"] == "noise")
-            fams = {r["name"]: r for r in rank if r["name"] != "noise"}
-            first = min(fams.values(), key=lambda r: r["score"])
-            structure = first["refined"] if first["refined"] is not None else first["retrieval"]
+        for c in p["choices"]:
+            pt = next(pts)
+            fams = [r for r in c["ranking"] if r["name"] != "noise"]
             out.append(dict(
-                file=e["file"], category=e["category"], labels=set(e["families"] or []),
-                noise_d=noise["distance"], self_d=(first["score"] - structure) / OCCAM,
-                dark=c["photo_cues"][SKEWNESS_CUE] < DARK_NETWORK_SKEWNESS,
-                families={n: (r["refined"] if r["refined"] is not None else r["retrieval"],
-                              r["distance"]) for n, r in fams.items()},
-                chosen=c["chosen"],
-                family_ok=patch_overall(p["auto"], i) <= patch_overall(p["noise"], i)))
+                pt, dark=c["photo_cues"][CUE_NAMES.index("skewness")] < DARK_NETWORK_SKEWNESS,
+                families={r["name"]: (r["refined"] if r["refined"] is not None
+                                      else r["retrieval"], r["distance"]) for r in fams}))
     return out
 
 
@@ -59,12 +54,7 @@ def choose(pt, bias):
 
 
 def rates(pts, bias):
-    s = [pt for pt in pts if pt["category"] == "structured"]
-    t = [pt for pt in pts if pt["category"] == "stochastic"]
-    labelled = sum(choose(pt, bias) in pt["labels"] for pt in s)
-    served = sum(1 for pt in t if (c := choose(pt, bias)) == "noise"
-                 or (c == pt["chosen"] and pt["family_ok"]))
-    return labelled, len(s), served, len(t)
+    return tally(pts, lambda pt: choose(pt, bias))
 
 
 def objective(pts, bias):
