@@ -39,7 +39,7 @@
 //! beside it), where jitter spreads power to every lower frequency and bending only widens the
 //! peak. Jitter is searched from 0.2 ([`ValueSpec::search_min`]: unstaggered cells with less
 //! are a grid); the sliders reach 0. An earlier try, a tenth *scales* family, cost the round
-//! trip (README); these two values on cells kept it at 66/72 and found all 8 cells cases.
+//! trip (docs/measurements.md); these two values on cells kept it at 66/72 and found all 8 cells cases.
 //! Documents written before the ranges were narrowed load with their values clamped
 //! ([`Pattern::clamp_values`]). With these ranges (and two refinement starts) the synthetic
 //! round trip finds the right family in 59 of 72 cases, up from 43 (62 since the noise

@@ -1,6 +1,6 @@
 //! Power spectrum matching (Lagae §4): 2D FFT (rustfft, any size), band power per octave
 //! (eq. 10), and band weights (eq. 9), plus two improvements over the paper, both measured in the
-//! round-trip tests and the README:
+//! round-trip tests and docs/measurements.md:
 //!
 //! 1. **Periodic + smooth decomposition** (Moisan 2011). The FFT treats the photo as periodic;
 //!    its non-matching borders add a cross of spurious energy along the frequency axes that the

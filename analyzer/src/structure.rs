@@ -145,7 +145,7 @@ pub fn structure_image_prepared(prep: &Prepared, tile: &Tile, width: u32, height
 /// no weights to tune. A grown residual takes its variance from the ramp
 /// ([`Balance::contract_ramp`]).
 ///
-/// Measured on the fidelity protocol (spectrum / colour / structure ratios, README): a sum of
+/// Measured on the fidelity protocol (spectrum / colour / structure ratios, docs/measurements.md): a sum of
 /// logs first did the job, but a tone curve fitted to its own render makes the colour
 /// self-distance tiny, so small colour changes outweighed large spectrum gains (reptile skin
 /// spectrum 1.96 with it, 1.86 with `Σ d_i / u_i`). `Σ d_i / u_i` in turn still counted colour
@@ -158,7 +158,7 @@ pub fn structure_image_prepared(prep: &Prepared, tile: &Tile, width: u32, height
 /// changed only hacienda (spectrum 1.17 → 1.15), for two more fits: not kept. Each `α` is
 /// also tried after [`match_spectrum`]: hacienda 1.17 / 1.03 / 1.72 → 1.10 / 1.02 / 1.64,
 /// black rock 1.88 / 1.03 / 1.09 → 1.77 / 1.06 / 1.05, rock wall 1.16 / 1.12 / 1.33 → 1.11 /
-/// 1.16 / 1.34, reptile skin spectrum 1.91 → 1.86; the README's table has the rest.
+/// 1.16 / 1.34, reptile skin spectrum 1.91 → 1.86; docs/measurements.md has the rest.
 ///
 /// `db` weighs the structure distance (the shipped database natively; the one the browser
 /// loaded there).
@@ -349,7 +349,7 @@ const LATTICE_SCALE_STEPS: [f32; 2] = [0.9, 1.1];
 /// model's 1.09), colour 1.02 → 1.03, structure 1.73 → 1.69; wood planks' spectrum 1.78 →
 /// 1.75. Reusing the refined pattern's choice (as here), at a third of the extra work, moved
 /// the spectrum ratios by 0.01 or less on hacienda, planks, old wood, black rock and gravel,
-/// and rock wall's 1.14 → 1.09 (colour 1.20 → 1.26; README table). Hacienda's refined fits sit at 0.87–0.9, hence ridged's
+/// and rock wall's 1.14 → 1.09 (colour 1.20 → 1.26; docs/measurements.md). Hacienda's refined fits sit at 0.87–0.9, hence ridged's
 /// range up to 1 ([`crate::pattern::ValueSpec::search_max`]).
 fn step_6_candidates(pattern: &Pattern) -> Vec<Pattern> {
     let mut out = vec![pattern.clone()];
@@ -748,7 +748,7 @@ fn fit_structured_gains(
 /// is scaled by `√(target_k / P_residual,k)`. The weights are then rescaled to their former
 /// sum of squares: with histogram matching on, that sum is what the inverse CDF expects, and the
 /// residual's total variance is the histogram's. Gains: spectrum ratios of the fidelity table
-/// (README).
+/// (docs/measurements.md).
 ///
 /// Returns, per channel, the factor `√(Σ_k target_k / Σ_k P_residual,k)` by which the
 /// residual's amplitude would have to grow to carry the target power (step 6 of

@@ -27,7 +27,7 @@ const TONE_STRENGTHS: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 ///    (sliced Wasserstein colour distance, [`crate::evaluate::colour_distance`]); the `λ` of
 ///    least distance is kept, none if 0.
 ///
-/// Measured on the fidelity protocol (README): fitted on one render, the curve overfits that
+/// Measured on the fidelity protocol (docs/measurements.md): fitted on one render, the curve overfits that
 /// seed's few bricks (brick colour ratio 1.20 on its own render, 1.38–1.48 on other seeds);
 /// pooled over four it holds on a fifth (2.19 → 1.32). Where the render's colours depend on
 /// the seed more than on any systematic error (a 128² patch of wood holds four planks, each

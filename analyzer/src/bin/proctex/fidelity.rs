@@ -23,7 +23,7 @@ bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and com
 other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio
 (near 1: as close as another patch of the same material), and the floor: the same ratio for
 the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
-can do). --model as for `analyze`, but noise by default (the README's noise-only table).
+can do). --model as for `analyze`, but noise by default (the noise-only table of docs/measurements.md).
 --against M2 also runs M2 with the same seeds and prints the difference of the ratios (M − M2;
 negative: M is nearer) with its standard error over the distinct source patches, the
 independent samples (a difference within about twice it is not evidence either way): four, or

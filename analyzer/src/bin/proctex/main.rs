@@ -27,7 +27,7 @@ COMMANDS:
     render    params JSON → PNG (CPU reference renderer)
     synth     PHOTO → analysed texture rendered at exactly the photo's pixel size
     evaluate  texture distances between two images
-    fidelity  synthesis-vs-photo distance ratios (the README's fidelity table)
+    fidelity  synthesis-vs-photo distance ratios (README, Results)
     morph     params JSON files → the texture a fraction t of the way through them
     export    params JSON → params JSON, or a complete WGSL or GLSL shader of the texture or a morph
     build-db  the retrieval database of the structured models (analyzer/data/patterns.ptxdb)
