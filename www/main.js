@@ -383,7 +383,7 @@ function tileAbort() {
   tileWriter = null;
 }
 
-// What the app calls (window.proctexHost): see web/src/app.rs `host`.
+// What the app calls (window.proctexHost): see web/src/app/bridge.rs `host`.
 window.proctexHost = {
   openFile: () => fileInput.click(),
   openCamera: () => { openCamera(); },

@@ -1,0 +1,298 @@
+//! The presets panel: the built-in gallery, the user's presets (save, load, rename, reorder,
+//! delete, import, export) and their storage in the browser.
+
+use eframe::egui;
+use proctex::params::Params;
+use wasm_bindgen::JsValue;
+
+use crate::presets::{Preset, STORAGE_KEY, library_json, parse_library};
+
+use super::{ProctexApp, export_shader, host};
+
+impl ProctexApp {
+    /// Loads the presets from `localStorage`. An unreadable stored library is moved aside to a
+    /// backup key (never deleted) and reported.
+    pub(super) fn with_stored_presets(mut self) -> Self {
+        let Some(storage) = web_sys::window().and_then(|w| w.local_storage().ok().flatten()) else {
+            self.error = Some(
+                "Presets: this browser gives the page no storage; presets will not persist".into(),
+            );
+            return self;
+        };
+        if let Ok(Some(text)) = storage.get_item(STORAGE_KEY) {
+            match parse_library(&text) {
+                Ok(list) => self.set_presets(list),
+                Err(e) => {
+                    let backup = format!("{STORAGE_KEY}.unreadable-{}", js_sys::Date::now() as u64);
+                    let _ = storage.set_item(&backup, &text);
+                    self.error = Some(format!(
+                        "The stored presets could not be read ({e}); they were kept under the storage key {backup}"
+                    ));
+                }
+            }
+        }
+        self
+    }
+
+    pub(super) fn set_presets(&mut self, list: Vec<Preset>) {
+        let n = list.len();
+        self.presets.list = list;
+        self.presets.thumbs = vec![None; n];
+        self.presets.selected = vec![false; n];
+        self.presets.renaming = None;
+    }
+
+    /// Writes the library to `localStorage`. A failed write (full quota) leaves the stored
+    /// library as it was; the presets stay in memory and the user is told to export them.
+    pub(super) fn persist_presets(&mut self) {
+        let text = library_json(&self.presets.list);
+        let ok = web_sys::window()
+            .and_then(|w| w.local_storage().ok().flatten())
+            .map(|s| s.set_item(STORAGE_KEY, &text).is_ok())
+            .unwrap_or(false);
+        if !ok {
+            self.error = Some(
+                "Presets could not be saved (browser storage full or unavailable): the previously \
+                 saved presets are unchanged; use Export… to keep the current ones"
+                    .into(),
+            );
+        }
+    }
+
+    /// Save, load, rename, reorder, delete presets; choose two or more to morph between.
+    pub(super) fn presets_panel(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        ui.horizontal(|ui| {
+            let r = ui.add(
+                egui::TextEdit::singleline(&mut self.presets.new_name)
+                    .hint_text("name")
+                    .desired_width(120.0),
+            );
+            self.record("preset.name", &r);
+            let r = ui.add_enabled(self.params.is_some(), egui::Button::new("Save preset"));
+            self.record("preset.save", &r);
+            if r.clicked()
+                && let Some(p) = self.params.clone()
+            {
+                let name = match self.presets.new_name.trim() {
+                    "" => self
+                        .photo
+                        .as_ref()
+                        .map(|p| p.name.trim_end_matches(".png").to_string())
+                        .unwrap_or_else(|| format!("preset {}", self.presets.list.len() + 1)),
+                    n => n.to_string(),
+                };
+                let mut list = std::mem::take(&mut self.presets.list);
+                list.push(Preset {
+                    name,
+                    params: p,
+                    morph: None,
+                });
+                self.set_presets(list);
+                self.presets.new_name.clear();
+                self.persist_presets();
+            }
+        });
+        ui.horizontal(|ui| {
+            let json = self.params.as_ref().map(Params::to_json);
+            let r = ui
+                .add_enabled(json.is_some(), egui::Button::new("Params JSON…").small())
+                .on_hover_text("Download the current params (proctex/1); drop or paste it back");
+            self.record("params.download", &r);
+            if r.clicked()
+                && let Some(j) = &json
+            {
+                host(
+                    "downloadText",
+                    &[
+                        JsValue::from_str("proctex-texture.json"),
+                        JsValue::from_str(j),
+                    ],
+                );
+            }
+            let r = ui
+                .add_enabled(json.is_some(), egui::Button::new("Copy link").small())
+                .on_hover_text("Copy a link that opens this texture (params in the URL fragment)");
+            self.record("params.link", &r);
+            if r.clicked()
+                && let Some(j) = &json
+            {
+                host("copyShareLink", &[JsValue::from_str(j)]);
+                self.status_note = Some("Link copied to the clipboard".into());
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("Shader:");
+            let clicked = self.shader_buttons(ui, "export", self.params.is_some(), "this texture");
+            if let (Some((format, ext, copy)), Some(p)) = (clicked, &self.params) {
+                let text = export_shader(std::slice::from_ref(p), ext);
+                self.deliver_shader(format, ext, copy, "proctex-texture", text);
+            }
+        });
+        self.tile_row(ui);
+        ui.horizontal(|ui| {
+            let r = ui.small_button("Export…");
+            self.record("presets.export", &r);
+            if r.clicked() {
+                host(
+                    "downloadText",
+                    &[
+                        JsValue::from_str("proctex-presets.json"),
+                        JsValue::from_str(&library_json(&self.presets.list)),
+                    ],
+                );
+            }
+            let r = ui.small_button("Import…");
+            self.record("presets.import", &r);
+            if r.clicked() {
+                host("openPresets", &[]);
+            }
+        });
+        if !self.presets.gallery.is_empty() {
+            ui.label("Gallery (the samples, analysed):");
+            let mut load = None;
+            ui.horizontal_wrapped(|ui| {
+                for i in 0..self.presets.gallery.len() {
+                    let (preset, thumb) = &mut self.presets.gallery[i];
+                    let id = thumb
+                        .get_or_insert_with(|| {
+                            let rgba = crate::jobs::preview_rgba(&preset.params, 40, 40);
+                            let img = egui::ColorImage::from_rgba_unmultiplied([40, 40], &rgba);
+                            ctx.load_texture(
+                                format!("gallery{i}"),
+                                img,
+                                egui::TextureOptions::LINEAR,
+                            )
+                        })
+                        .id();
+                    let name = preset.name.clone();
+                    let r = ui
+                        .add(egui::Button::image((id, egui::vec2(32.0, 32.0))))
+                        .on_hover_text(format!("{name}: click to load"));
+                    self.record(format!("gallery.{i}"), &r);
+                    if r.clicked() {
+                        load = Some(i);
+                    }
+                }
+                let r = ui
+                    .small_button("+ to presets")
+                    .on_hover_text("Copy the gallery into your presets (to rename, morph, export)");
+                self.record("gallery.add", &r);
+                if r.clicked() {
+                    let mut list = std::mem::take(&mut self.presets.list);
+                    list.extend(self.presets.gallery.iter().map(|(p, _)| p.clone()));
+                    self.set_presets(list);
+                    self.persist_presets();
+                }
+            });
+            if let Some(i) = load {
+                self.presets.morph = None;
+                self.params = Some(self.presets.gallery[i].0.params.clone());
+            }
+        }
+        let mut action: Option<(usize, &'static str)> = None;
+        let n = self.presets.list.len();
+        for i in 0..n {
+            if self.presets.thumbs[i].is_none() {
+                let rgba = crate::jobs::preview_rgba(&self.presets.list[i].params, 40, 40);
+                let img = egui::ColorImage::from_rgba_unmultiplied([40, 40], &rgba);
+                self.presets.thumbs[i] =
+                    Some(ctx.load_texture(format!("preset{i}"), img, egui::TextureOptions::LINEAR));
+            }
+            let thumb = self.presets.thumbs[i].as_ref().map(|t| t.id());
+            ui.horizontal(|ui| {
+                let r = ui.checkbox(&mut self.presets.selected[i], "");
+                self.record(format!("preset.{i}.morph"), &r);
+                if let Some(id) = thumb {
+                    ui.image((id, egui::vec2(24.0, 24.0)));
+                }
+                if let Some((j, text)) = self.presets.renaming.as_mut()
+                    && *j == i
+                {
+                    let r = ui.add(egui::TextEdit::singleline(text).desired_width(110.0));
+                    self.record(format!("preset.{i}.name"), &r);
+                    if r.lost_focus() {
+                        action = Some((i, "renamed"));
+                    }
+                } else {
+                    let label = match &self.presets.list[i].morph {
+                        Some(_) => format!("⟷ {}", self.presets.list[i].name),
+                        None => self.presets.list[i].name.clone(),
+                    };
+                    let label = if label.chars().count() > 22 {
+                        format!("{}…", label.chars().take(21).collect::<String>())
+                    } else {
+                        label
+                    };
+                    let r = ui.selectable_label(false, label).on_hover_text("Load");
+                    self.record(format!("preset.{i}"), &r);
+                    if r.clicked() {
+                        action = Some((i, "load"));
+                    }
+                }
+                for (what, icon) in [
+                    ("rename", "✏"),
+                    ("up", "↑"),
+                    ("down", "↓"),
+                    ("delete", "del"),
+                ] {
+                    let r = ui.small_button(icon).on_hover_text(what);
+                    self.record(format!("preset.{i}.{what}"), &r);
+                    if r.clicked() {
+                        action = Some((i, what));
+                    }
+                }
+            });
+        }
+        if let Some((i, what)) = action {
+            self.preset_action(i, what);
+        }
+        self.morph_controls(ui);
+    }
+
+    pub(super) fn preset_action(&mut self, i: usize, what: &str) {
+        let mut list = self.presets.list.clone();
+        match what {
+            "load" => {
+                let p = &self.presets.list[i];
+                match &p.morph {
+                    Some(m) => {
+                        self.presets.morph = Some(m.keys.clone());
+                        self.presets.morph_from = None;
+                        self.presets.duration_s = m.duration_s;
+                        self.presets.t = 0.0;
+                        self.params = Some(m.keys[0].clone());
+                    }
+                    None => {
+                        self.presets.morph = None;
+                        self.params = Some(p.params.clone());
+                    }
+                }
+                return;
+            }
+            "rename" => {
+                self.presets.renaming = Some((i, list[i].name.clone()));
+                return;
+            }
+            "renamed" => {
+                if let Some((_, name)) = self.presets.renaming.take()
+                    && !name.trim().is_empty()
+                {
+                    list[i].name = name.trim().to_string();
+                }
+            }
+            "up" if i > 0 => list.swap(i, i - 1),
+            "down" if i + 1 < list.len() => list.swap(i, i + 1),
+            "delete" => {
+                list.remove(i);
+            }
+            _ => return,
+        }
+        let selected = self.presets.selected.clone();
+        self.set_presets(list);
+        if what == "renamed" {
+            self.presets.selected = selected;
+        }
+        self.persist_presets();
+    }
+}
