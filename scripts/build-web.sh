@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the browser app into www/pkg: the wasm crate (profile wasm-release), wasm-bindgen
+# Builds the browser app into www/pkg: the UI's and the worker's wasm crates (profile
+# wasm-release), wasm-bindgen
 # (pinned to the crate's wasm-bindgen version), then wasm-opt -Oz from npm's binaryen.
 # Installs what it needs: the wasm32 target, wasm-bindgen-cli, and the npm tools (in tools/).
 set -euo pipefail
@@ -17,14 +18,20 @@ if [ ! -x tools/node_modules/.bin/wasm-opt ]; then
     (cd tools && npm ci --no-audit --no-fund)
 fi
 
+# Two modules, each built with only what it needs: the UI (egui, the wgpu renderer) and the
+# worker (analysis, retrieval, refinement). Two cargo runs, so that the worker crate's
+# `exports` feature stays off in the UI's build (cargo unifies features within one run).
 cargo build -p proctex-web --target wasm32-unknown-unknown --profile wasm-release
+cargo build -p proctex-worker --target wasm32-unknown-unknown --profile wasm-release
 rm -rf www/pkg
-wasm-bindgen --target web --no-typescript --out-dir www/pkg \
-    target/wasm32-unknown-unknown/wasm-release/proctex_web.wasm
-tools/node_modules/.bin/wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-float-to-int \
-    --enable-sign-ext --enable-mutable-globals \
-    www/pkg/proctex_web_bg.wasm -o www/pkg/proctex_web_bg.wasm
-echo "www/pkg/proctex_web_bg.wasm: $(stat -c %s www/pkg/proctex_web_bg.wasm) bytes"
+for module in proctex_web proctex_worker; do
+    wasm-bindgen --target web --no-typescript --out-dir www/pkg \
+        "target/wasm32-unknown-unknown/wasm-release/$module.wasm"
+    tools/node_modules/.bin/wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-float-to-int \
+        --enable-sign-ext --enable-mutable-globals \
+        "www/pkg/${module}_bg.wasm" -o "www/pkg/${module}_bg.wasm"
+    echo "www/pkg/${module}_bg.wasm: $(stat -c %s "www/pkg/${module}_bg.wasm") bytes"
+done
 # The pattern database (structured-model retrieval) is fetched by the worker, not embedded in
 # the wasm: it would more than double the download the app needs before its first frame.
 cp analyzer/data/patterns.ptxdb www/pkg/patterns.ptxdb

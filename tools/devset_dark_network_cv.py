@@ -34,7 +34,7 @@ from devset_occam_cv import patches as occam_patches
 CUE_NAMES = ["lattice", "lattice2", "lobe_elongation", "coherence", "axis_alignment",
              "kurtosis", "kurtosis_fine", "skewness", "bimodality", "edge_sparsity"]
 OFF = float("-inf")
-OCCAM = 0.2  # retrieve::OCCAM
+OCCAM = 0.2  # retrieve::NOISE_MODEL_MARGIN (called OCCAM until 2026-11-27)
 
 
 def patches(photos, cue):

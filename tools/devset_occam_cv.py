@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Cross-validates the ranking's OCCAM margin on the development set, offline.
+"""Cross-validates the ranking's noise-model margin (`retrieve::NOISE_MODEL_MARGIN`, called OCCAM
+until 2026-11-27) on the development set, offline.
 
 Input: the JSON lines of `proctex fidelity --set ../shared/photos/dev --json` (one line per
 photo, then the summary), whose patches carry their whole ranking. The ranking is a function

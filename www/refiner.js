@@ -3,7 +3,7 @@
 // It loads the same wasm and pattern database, rebuilds the job's retrieval from the job's
 // prepared photo and seed (`Refiner`), and returns each family's result as JSON, which the
 // analysis worker stores with `Suggestions.setRefined`: the same numbers as refining there.
-import init, * as wasm from './pkg/proctex_web.js';
+import init, * as wasm from './pkg/proctex_worker.js';
 
 const ready = init().then(async () => {
   const r = await fetch(new URL('./pkg/patterns.ptxdb', import.meta.url));

@@ -9,7 +9,7 @@
 // image) that cannot be cut into frame-sized pieces without rewriting the analyzer as a state
 // machine; in a worker they run whole, in parallel with rendering, and the UI thread only
 // receives the params (a few KB) and a preview.
-import init, * as wasm from './pkg/proctex_web.js';
+import init, * as wasm from './pkg/proctex_worker.js';
 
 const ready = init();
 const PREVIEW_SIDE = 1024; // longest side of the preview sent to the UI (crop panel, split view)

@@ -5,7 +5,7 @@
 //!   same code path as in the browser) vs three plain rustfft 2D FFTs of the same size (the cost
 //!   floor of any per-channel spectral analysis). Target: ratio ≤ 2.
 //! - render throughput of the CPU reference renderer at 1024², Mpixel/s, one thread and all.
-//! - model retrieval (issue 5) for a 256² query, single thread: the descriptor (two-tone map
+//! - model retrieval for a 256² query, single thread: the descriptor (two-tone map
 //!   and Gabor bank) vs its own FFTs alone, and descriptor + search of every family (target
 //!   ≤ 250 ms in WASM; e2e/bench times the same in the browser); the refinement's time and how
 //!   much it lowers the structure distance; the database's build time (target ≤ 3 min on this

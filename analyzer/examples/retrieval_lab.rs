@@ -10,8 +10,8 @@ use proctex::gabor::{SIZE, describe};
 use proctex::input::{Crop, Photo};
 use proctex::noise::Tile;
 use proctex::pattern::PatternKind;
+use proctex::render::pattern::structure_image;
 use proctex::rng;
-use proctex::structure::structure_image;
 use proctex::two_tone::{network_phase, two_tone};
 
 struct Patch {

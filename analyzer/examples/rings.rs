@@ -1,5 +1,5 @@
 //! Diagnostic: where, per quarter-octave ring of the spectrum distance
-//! ([`proctex::evaluate::radial_spectrum`]), the fidelity protocol's syntheses (noise model and
+//! ([`proctex::distance::radial_spectrum`]), the fidelity protocol's syntheses (noise model and
 //! auto) differ from the other patch. `cargo run --release --example rings -- PHOTO [SEEDS]
 //! [MODEL]` (MODEL, `auto` by default, is what the second column set shows: `auto`, `noise` or a
 //! family's name)
@@ -8,7 +8,8 @@
 //! difference to the analysed patch itself (in-sample); on stderr, which model auto chose per
 //! patch and seed. All four quadrant patches are used, repeating or not.
 use proctex::analyze::Options;
-use proctex::evaluate::{radial_spectrum, synthesize_model};
+use proctex::distance::radial_spectrum;
+use proctex::evaluate::synthesize_model;
 use proctex::input::{Crop, Photo};
 use proctex::params::Model;
 use proctex::retrieve::{ModelChoice, Refinement};

@@ -4,7 +4,8 @@
 //! analyses quadrant (QX, QY) ∈ {0, 1}² of PHOTO. Where the ramp alone exceeds the patch, the
 //! residual (which can only add power) cannot bring the render back.
 use proctex::analyze::Options;
-use proctex::evaluate::{radial_spectrum, synthesize_model};
+use proctex::distance::radial_spectrum;
+use proctex::evaluate::synthesize_model;
 use proctex::input::{Crop, Photo};
 use proctex::params::Model;
 use proctex::render::{View, render};

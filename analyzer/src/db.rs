@@ -20,8 +20,8 @@ use crate::gabor::{
 };
 use crate::noise::Tile;
 use crate::pattern::{Pattern, PatternKind};
+use crate::render::pattern::structure_image;
 use crate::rng;
-use crate::structure::structure_image;
 
 /// Parameter sets per pattern family.
 pub const SAMPLES_PER_KIND: usize = 2560;

@@ -568,7 +568,7 @@ mod tests {
     }
 
     fn fidelity(halves: f64, ratio: f64) -> Fidelity {
-        let d = |v: f64| crate::evaluate::Distances {
+        let d = |v: f64| crate::distance::Distances {
             spectrum_db: v,
             colour: v,
             structure: v,

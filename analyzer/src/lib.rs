@@ -5,33 +5,53 @@
 //!
 //! Pure Rust: no web or GPU dependency. Data flow:
 //! `bytes → input::Photo → analyze::analyze → params::Params → render::render → image`.
+//!
+//! The modules are declared below in layers, lowest first. A module uses modules of lower layers
+//! and of its own layer only, and no two modules use each other, directly or through others.
+//! `tests/layers.rs` reads these declarations and checks both rules on every source file.
 
-pub mod analyze;
+// Layer: foundations (no model yet).
 pub mod colour;
-pub mod cues;
-pub mod db;
-pub mod devset;
 pub mod error;
-pub mod evaluate;
-pub mod export;
-pub mod gabor;
 pub mod histogram;
 pub mod input;
-pub mod morph;
-pub mod noise;
 pub mod parallel;
+pub mod radix;
+pub mod rng;
+
+// Layer: the texture model: noise tiles, pattern families, the one parameters type.
+pub mod noise;
 pub mod params;
 pub mod pattern;
-pub mod radix;
-pub mod refine;
+
+// Layer: rendering the model (the per-pixel twins of the shaders) and measuring images.
 pub mod render;
-pub mod retrieve;
-pub mod rng;
 pub mod seamless;
 pub mod solid;
 pub mod specks;
+
+// Layer: the noise model's analysis (Lagae: colour, histogram, spectrum).
+pub mod analyze;
 pub mod spectrum;
-pub mod structure;
+
+// Layer: descriptors and distances of structure (two-tone map, Gabor bank, database).
+pub mod cues;
+pub mod db;
+pub mod distance;
+pub mod gabor;
 pub mod two_tone;
+
+// Layer: fitting a pattern's colours to a photo.
+pub mod structure;
+
+// Layer: the automatic model choice (retrieval, refinement, ranking).
+pub mod refine;
+pub mod retrieve;
+
+// Layer: what is built on whole analyses: fidelity, the development set, morphs, shaders.
+pub mod devset;
+pub mod evaluate;
+pub mod export;
+pub mod morph;
 
 pub use error::{Error, Result};

@@ -368,7 +368,8 @@ fn lerp_ramps(
     b: &[crate::pattern::RampStop],
     t: f32,
 ) -> Vec<crate::pattern::RampStop> {
-    use crate::pattern::{RampStop, ramp_rows};
+    use crate::pattern::RampStop;
+    use crate::render::pattern::ramp_rows;
     let (ra, rb) = (ramp_table(a), ramp_table(b));
     ramp_union(a, b)
         .iter()

@@ -81,7 +81,7 @@ pub const MAX_CONTRAST: f32 = 4.0;
 pub enum Model {
     /// Multiresolution wavelet noise per decorrelated channel (Lagae et al. 2009).
     Noise(NoiseModel),
-    /// A structured pattern through a colour ramp, plus residual noise (issue 5).
+    /// A structured pattern through a colour ramp, plus residual noise.
     Structured(StructuredModel),
 }
 
@@ -510,4 +510,45 @@ fn check_range(field: &str, v: f32, lo: f32, hi: f32) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+/// A structured params shell around `pattern` (flat grey ramp, silent residual): what the
+/// pattern functions need to render `s`, and the start of a fit.
+pub fn pattern_shell(pattern: Pattern, seed: u32, solid: bool) -> Params {
+    Params {
+        format: FORMAT.into(),
+        seed,
+        solid,
+        transform: Transform {
+            scale: 1.0,
+            rotation_deg: 0.0,
+        },
+        colour: Colour {
+            mean: [0.5; 3],
+            basis: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            contrast: 1.0,
+        },
+        model: Model::Structured(StructuredModel {
+            pattern,
+            ramp: vec![
+                RampStop {
+                    at: 0.0,
+                    rgb: [0.0; 3],
+                },
+                RampStop {
+                    at: 1.0,
+                    rgb: [1.0; 3],
+                },
+            ],
+            residual: NoiseModel {
+                weights: [vec![0.0], vec![0.0], vec![0.0]],
+                histogram: Histogram {
+                    enabled: false,
+                    knots: [vec![0.0, 0.0], vec![0.0, 0.0], vec![0.0, 0.0]],
+                },
+            },
+            tone: None,
+        }),
+        source: None,
+    }
 }

@@ -13,10 +13,12 @@
 use crate::histogram::{fc_tangents, knot_coordinate, spline_eval};
 use crate::noise::{TILE_2D, TILE_3D, Tile, band_fade, noise2, noise3};
 use crate::params::{MAX_BANDS, MAX_KNOTS, MAX_TONE_KNOTS, Model, Params};
-use crate::pattern::{MAX_STOPS, MAX_VALUES, OCTAVES, pattern, ramp};
+use crate::pattern::{MAX_STOPS, MAX_VALUES, OCTAVES};
 use crate::rng;
+use pattern::{pattern, ramp};
 
 mod fields;
+pub mod pattern;
 pub use fields::{Fields, render_with_fields};
 
 /// Params flattened for per-pixel evaluation (mirrors the GPU uniform block).

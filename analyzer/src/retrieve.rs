@@ -1,4 +1,4 @@
-//! Automatic model choice (issue 5, points 3 and 5): every candidate, the noise model included,
+//! Automatic model choice: every candidate, the noise model included,
 //! gets one texture distance to the photo, and the nearest wins.
 //!
 //! 1. The photo's two-tone structure map ([`crate::two_tone`]) gives the query descriptor
@@ -42,7 +42,7 @@ use crate::two_tone::{TwoTone, network_phase, two_tone};
 /// features and differ a lot). It was 0.6 until this was measured (hacienda and reptile skin
 /// went to noise, 3 round-trip cases lost), then 0.25; 0.2 won a coarse ridged case (gain
 /// 0.21): 63 → 64 of 72 before the fine-grain rule, 65 with it.
-pub const OCCAM: f32 = 0.2;
+pub const NOISE_MODEL_MARGIN: f32 = 0.2;
 
 /// Below this skewness of its detrended luminance ([`crate::cues::dark_skewness`]) a photo has
 /// a dark network (thin dark joints, cracks, gaps between stones standing out of a lighter
@@ -131,7 +131,7 @@ pub struct Suggestion {
     pub pattern: Option<(Pattern, bool)>,
     /// The texture distance of the fitted candidate to the photo (lower is nearer).
     pub distance: f32,
-    /// The ranking key: `distance`, plus [`OCCAM`] × the photo's own patch-to-patch distance
+    /// The ranking key: `distance`, plus [`NOISE_MODEL_MARGIN`] × the photo's own patch-to-patch distance
     /// for structured candidates.
     pub score: f32,
     /// The descriptor distance of the bare pattern found by retrieval (0 for noise).
@@ -461,7 +461,7 @@ impl Suggester {
     ///
     /// Ranking (`score`): the families are ordered by their *structure distance* (refined, else
     /// retrieval: the bare pattern's descriptor against the photo's structure map) plus the
-    /// [`OCCAM`] margin. The noise model has no bare structure; it is ranked against the best
+    /// [`NOISE_MODEL_MARGIN`] margin. The noise model has no bare structure; it is ranked against the best
     /// family by *texture distance* (each fitted and rendered, projected on the photo's tone
     /// line, described): noise comes first when its texture distance is below the best family's
     /// plus the margin. Its `score` is its texture distance moved onto the families' scale
@@ -473,7 +473,7 @@ impl Suggester {
     /// blur the very structure that tells families apart.
     pub fn suggestions(&self, db: &Db) -> Vec<Suggestion> {
         let tile = Tile::new_2d(self.opts.seed);
-        let margin = OCCAM * self_distance(db, &self.tt);
+        let margin = NOISE_MODEL_MARGIN * self_distance(db, &self.tt);
         let mut out: Vec<Suggestion> = Vec::with_capacity(self.starts.len() + 1);
         let noise = analyze_prepared(&self.small, &self.opts).params;
         let distance = texture_distance(db, &self.tt, &self.q, &noise, &tile);

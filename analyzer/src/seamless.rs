@@ -23,9 +23,9 @@
 //! Structured models (ours; neither paper makes tiles of them): the pattern's total rotation
 //! (the texture's plus the pattern's) is moved to the nearest multiple of 90°, so that its
 //! axes run along the tile's; over the tile the pattern then spans `span` pattern units along
-//! each of its axes, which [`crate::pattern::tile_periods`] moves to a whole number of the
+//! each of its axes, which [`crate::render::pattern::tile_periods`] moves to a whole number of the
 //! family's cells (rows, bricks, planks, stones, wood lines), and
-//! [`crate::pattern::pattern_at`] wraps cell indices, row shifts and noise octaves at those
+//! [`crate::render::pattern::pattern_at`] wraps cell indices, row shifts and noise octaves at those
 //! periods (rings: the torus distance to their centre). Departures, deliberate: a turned
 //! pattern (a brick wall at 30°) is tiled upright (a turned lattice cannot repeat along the
 //! tile's axes with a period this small); the cells' size moves by up to half a cell over the
@@ -35,7 +35,7 @@
 use crate::error::{Error, Result};
 use crate::noise::{Tile, band_fade, noise2_periodic};
 use crate::params::{MAX_BANDS, Params};
-use crate::pattern::{pattern_at, ramp};
+use crate::render::pattern::{pattern_at, ramp};
 use crate::render::{Image, Prepared, colour};
 
 /// The largest tile side (the WebGPU limit on a texture side, and 256 MiB as 8-bit RGBA).
@@ -51,7 +51,7 @@ pub struct Seamless {
     /// Band `j` spans `periods[j]` coefficients over the tile (a whole number).
     pub periods: [f32; MAX_BANDS],
     /// Structured models: the pattern's periods over the tile along its axes (pattern units,
-    /// [`crate::pattern::tile_periods`]) and the cos and sin of its rotation moved to a
+    /// [`crate::render::pattern::tile_periods`]) and the cos and sin of its rotation moved to a
     /// multiple of 90° (exactly 0 or ±1); zero for the noise model.
     pub pattern: [f32; 4],
 }
@@ -85,7 +85,7 @@ impl Seamless {
         if prep.pattern[0] != 0 {
             let is = prep.pattern_transform[0];
             let [c, s] = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]][quarter_turn(prep).1];
-            let [px, py] = crate::pattern::tile_periods(prep, (span * is as f64) as f32);
+            let [px, py] = crate::render::pattern::tile_periods(prep, (span * is as f64) as f32);
             pattern = [px, py, c, s];
         }
         Ok(Seamless {
@@ -355,7 +355,7 @@ mod tests {
         let turned = |rot: f32, texture: f32| {
             let mut pat = Pattern::new(PatternKind::Brick, 20.0);
             pat.rotation_deg = rot;
-            let mut p = crate::structure::shell(pat, 1, false);
+            let mut p = crate::params::pattern_shell(pat, 1, false);
             p.transform.rotation_deg = texture;
             tile_turn(&p).map(|(a, b)| (a.round(), b))
         };
@@ -394,7 +394,7 @@ mod tests {
                 for &(k, v) in &values {
                     assert!(pat.set(k, v));
                 }
-                let params = crate::structure::shell(pat, 7 + i as u32, false);
+                let params = crate::params::pattern_shell(pat, 7 + i as u32, false);
                 let prep = Prepared::new(&params);
                 let s = Seamless::new(&prep, tile.n, 256, 1.0).unwrap();
                 assert!(

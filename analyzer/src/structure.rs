@@ -1,4 +1,4 @@
-//! Fitting a structured model's colour to a photo (issue 5, point 2): given a pattern (from
+//! Fitting a structured model's colour to a photo: given a pattern (from
 //! retrieval, or chosen by hand), the colour ramp along its structure value and the residual
 //! stochastic detail.
 //!
@@ -37,11 +37,10 @@
 use crate::analyze::{Analysis, Options, analyze_prepared};
 use crate::input::Photo;
 use crate::noise::Tile;
-use crate::params::{
-    Colour, FORMAT, Histogram, Model, NoiseModel, Params, StructuredModel, Transform,
-};
-use crate::pattern::{Pattern, PatternKind, RampStop, pattern, ramp_rows};
-use crate::render::{Fields, Prepared, render_with_fields};
+use crate::params::{Colour, Model, NoiseModel, Params, StructuredModel};
+use crate::pattern::{Pattern, PatternKind, RampStop};
+use crate::render::pattern::{ramp_rows, structure_image};
+use crate::render::{Fields, render_with_fields};
 use crate::two_tone::two_tone;
 
 mod tone;
@@ -50,83 +49,6 @@ use tone::{fit_tone_rendered, with_tone_applied};
 
 /// Stops of a fitted ramp (before merging equal ones).
 pub const FIT_STOPS: usize = 8;
-
-/// A structured params shell around `pattern` (flat grey ramp, silent residual): what the
-/// pattern functions need to render `s`, and the start of a fit.
-pub fn shell(pattern: Pattern, seed: u32, solid: bool) -> Params {
-    Params {
-        format: FORMAT.into(),
-        seed,
-        solid,
-        transform: Transform {
-            scale: 1.0,
-            rotation_deg: 0.0,
-        },
-        colour: Colour {
-            mean: [0.5; 3],
-            basis: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            contrast: 1.0,
-        },
-        model: Model::Structured(StructuredModel {
-            pattern,
-            ramp: vec![
-                RampStop {
-                    at: 0.0,
-                    rgb: [0.0; 3],
-                },
-                RampStop {
-                    at: 1.0,
-                    rgb: [1.0; 3],
-                },
-            ],
-            residual: NoiseModel {
-                weights: [vec![0.0], vec![0.0], vec![0.0]],
-                histogram: Histogram {
-                    enabled: false,
-                    knots: [vec![0.0, 0.0], vec![0.0, 0.0], vec![0.0, 0.0]],
-                },
-            },
-            tone: None,
-        }),
-        source: None,
-    }
-}
-
-/// The pattern's structure values over a `width × height` image at one texel per pixel (pixel
-/// centres, as the renderers sample), row-major. `tile` is the 2D noise tile of `seed`
-/// (`Tile::new_2d(seed)`; passed in because generating it costs more than the image).
-pub fn structure_image(
-    pattern: &Pattern,
-    seed: u32,
-    tile: &Tile,
-    width: u32,
-    height: u32,
-) -> Vec<f32> {
-    let prep = Prepared::new(&shell(pattern.clone(), seed, false));
-    structure_image_prepared(&prep, tile, width, height)
-}
-
-/// [`structure_image`] with the prepared block and tile supplied.
-pub fn structure_image_prepared(prep: &Prepared, tile: &Tile, width: u32, height: u32) -> Vec<f32> {
-    let mut out = vec![0.0f32; width as usize * height as usize];
-    let row = |y: usize, line: &mut [f32]| {
-        for (x, v) in line.iter_mut().enumerate() {
-            *v = pattern(prep, tile, [x as f32 + 0.5, y as f32 + 0.5, 0.0], 0.0);
-        }
-    };
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        use rayon::prelude::*;
-        out.par_chunks_mut(width as usize)
-            .enumerate()
-            .for_each(|(y, l)| row(y, l));
-    }
-    #[cfg(target_arch = "wasm32")]
-    for (y, l) in out.chunks_mut(width as usize).enumerate() {
-        row(y, l);
-    }
-    out
-}
 
 /// Fits the ramp, residual and output tone curve of `pattern` to an analysis-size photo (see
 /// the module docs).
@@ -178,7 +100,7 @@ pub fn fit_structured(
         }
         a
     };
-    let candidates = step_6_candidates(pattern);
+    let candidates = rougher_variants(pattern);
     if photo.pixels.len() < 64 {
         let (base, _, _) = fit_structured_gains(photo, pattern, opts, swapped, &tile);
         return with_tone(base);
@@ -191,15 +113,15 @@ pub fn fit_structured(
         let (w, hh) = (photo.width, photo.height / 2);
         let half = |y| photo.crop(crate::input::Crop { x: 0, y, w, h: hh }).ok();
         match (half(0), half(photo.height - hh)) {
-            (Some(a), Some(b)) if hh >= 8 => crate::evaluate::distances_with(db, &a, &b),
-            _ => crate::evaluate::Distances {
+            (Some(a), Some(b)) if hh >= 8 => crate::distance::distances_with(db, &a, &b),
+            _ => crate::distance::Distances {
                 spectrum_db: 1.0,
                 colour: 0.01,
                 structure: 1.0,
             },
         }
     };
-    let reference = crate::evaluate::Reference::of(photo);
+    let reference = crate::distance::Reference::of(photo);
     // One residual amplitude (`alpha`) and match (`matched`) of a fitted candidate: its score
     // and the analysis without its selection tone curve.
     // Every render of one candidate below shares its pattern and seed: its fields are drawn
@@ -300,10 +222,10 @@ pub fn fit_structured(
 /// 6's renders (10 candidates on a 256² photo: 3.0 s of the analysis' 4.5 s natively).
 const SELECTION_TONE_SEEDS: u32 = 1;
 
-/// Steps above the refined roughness that step 6 also tries ([`step_6_candidates`]).
+/// Steps above the refined roughness that step 6 also tries ([`rougher_variants`]).
 const ROUGHNESS_STEPS: [f32; 2] = [0.06, 0.12];
 
-/// Steps above the refined planks' `widths` that step 6 also tries ([`step_6_candidates`]).
+/// Steps above the refined planks' `widths` that step 6 also tries ([`rougher_variants`]).
 ///
 /// Ours: rows whose edges move up to ±¼ (`widths` 0.5, the searched range) still put the
 /// pattern's power into the harmonics of one period; up to ±½ (`widths` 1) the fundamental's
@@ -316,13 +238,13 @@ const ROUGHNESS_STEPS: [f32; 2] = [0.06, 0.12];
 /// rebuilt, moved wood planks' ratios to 1.67 / 1.07 / 1.69: not kept.
 const WIDTHS_STEPS: [f32; 2] = [0.25, 0.5];
 
-/// The value that [`step_6_candidates`] raises, per family (the first that the family
+/// The value that [`rougher_variants`] raises, per family (the first that the family
 /// has), and its steps.
 const IRREGULARITY_STEPS: [(&str, [f32; 2]); 2] =
     [("roughness", ROUGHNESS_STEPS), ("widths", WIDTHS_STEPS)];
 
 /// Factors of a lattice family's scale (grid, brick, cells, planks) that step 6 also tries
-/// ([`step_6_candidates`]).
+/// ([`rougher_variants`]).
 ///
 /// Ours: the descriptor's frequencies are an octave apart, so refinement leaves the scale of a
 /// near-regular lattice uncertain by about ±10 %, while its spectrum is peaks (reptile skin's
@@ -351,7 +273,7 @@ const LATTICE_SCALE_STEPS: [f32; 2] = [0.9, 1.1];
 /// the spectrum ratios by 0.01 or less on hacienda, planks, old wood, black rock and gravel,
 /// and rock wall's 1.14 → 1.09 (colour 1.20 → 1.26; docs/measurements.md). Hacienda's refined fits sit at 0.87–0.9, hence ridged's
 /// range up to 1 ([`crate::pattern::ValueSpec::search_max`]).
-fn step_6_candidates(pattern: &Pattern) -> Vec<Pattern> {
+fn rougher_variants(pattern: &Pattern) -> Vec<Pattern> {
     let mut out = vec![pattern.clone()];
     if matches!(
         pattern.kind,
@@ -866,14 +788,15 @@ fn solve_tridiagonal(diag: &[f64], off: &[f64], rhs: &[[f64; 3]]) -> Vec<[f64; 3
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::params::pattern_shell;
     use crate::render::{View, render};
 
     #[test]
-    fn step_6_tries_rougher_and_more_irregular_patterns_within_the_range() {
+    fn the_fit_tries_rougher_and_more_irregular_patterns_within_the_range() {
         let rough = |kind, r: f32| {
             let mut p = Pattern::new(kind, 20.0);
             assert!(p.set("roughness", r));
-            step_6_candidates(&p)
+            rougher_variants(&p)
                 .iter()
                 .map(|c| c.get("roughness").unwrap())
                 .collect::<Vec<f32>>()
@@ -891,7 +814,7 @@ mod tests {
         let widths = |w: f32| {
             let mut p = Pattern::new(PatternKind::Planks, 20.0);
             assert!(p.set("widths", w));
-            step_6_candidates(&p)
+            rougher_variants(&p)
                 .iter()
                 .filter(|c| c.scale == p.scale)
                 .map(|c| c.get("widths").unwrap())
@@ -902,7 +825,7 @@ mod tests {
         assert!(near(&widths(0.9), &[0.9, 1.0]));
         // Lattices: the same a little finer and coarser (planks: then their widths raised).
         let scales = |kind| {
-            step_6_candidates(&Pattern::new(kind, 20.0))
+            rougher_variants(&Pattern::new(kind, 20.0))
                 .iter()
                 .map(|c| c.scale)
                 .collect::<Vec<f32>>()
@@ -944,7 +867,7 @@ mod tests {
     fn fit_recovers_the_tones_of_a_two_tone_brick_wall() {
         let mut pat = Pattern::new(PatternKind::Brick, 16.0);
         pat.set_vector(&[2.0, 0.15, 0.5, 0.0, 0.02, 0.0]);
-        let mut p = shell(pat.clone(), 3, false);
+        let mut p = pattern_shell(pat.clone(), 3, false);
         let (mortar, brick) = ([0.8, 0.78, 0.7], [0.6, 0.25, 0.15]);
         if let Model::Structured(m) = &mut p.model {
             m.ramp = vec![
@@ -985,7 +908,7 @@ mod tests {
     fn fit_tone_recovers_a_known_curve() {
         let mut pat = Pattern::new(PatternKind::Cells, 14.0);
         pat.rotation_deg = 10.0;
-        let mut p = shell(pat, 5, false);
+        let mut p = pattern_shell(pat, 5, false);
         if let Model::Structured(m) = &mut p.model {
             m.ramp[0].rgb = [0.2, 0.3, 0.25];
             m.ramp[1].rgb = [0.7, 0.6, 0.5];
@@ -1070,9 +993,9 @@ mod tests {
     /// without the gain.
     #[test]
     fn a_grey_photos_fine_grain_grows_the_residual() {
-        use crate::evaluate::distances;
+        use crate::distance::distances;
         let pat = Pattern::new(PatternKind::Cells, 12.0);
-        let mut p = shell(pat.clone(), 2, false);
+        let mut p = pattern_shell(pat.clone(), 2, false);
         if let Model::Structured(m) = &mut p.model {
             m.ramp[0].rgb = [0.3; 3];
             m.ramp[1].rgb = [0.6; 3];

@@ -154,8 +154,8 @@ fn unknown_fields_are_rejected() {
 /// with their structural values clamped into today's ranges; unknown names still fail.
 #[test]
 fn structured_values_out_of_range_are_clamped_on_import() {
+    use proctex::params::pattern_shell as shell;
     use proctex::pattern::{Pattern, PatternKind};
-    use proctex::structure::shell;
     use serde_json::json;
     let p = shell(Pattern::new(PatternKind::Brick, 20.0), 1, false);
     let doc = |key: &str, v: serde_json::Value| {
@@ -182,9 +182,9 @@ fn structured_values_out_of_range_are_clamped_on_import() {
 /// present one survives the round trip, and bad knots or ranges name their field.
 #[test]
 fn tone_curves_load_round_trip_and_name_bad_fields() {
+    use proctex::params::pattern_shell as shell;
     use proctex::params::{Model, Tone};
     use proctex::pattern::{Pattern, PatternKind};
-    use proctex::structure::shell;
     use serde_json::json;
     let mut p = shell(Pattern::new(PatternKind::Cells, 20.0), 1, false);
     let old = p.to_json();

@@ -8,11 +8,11 @@ use proctex::analyze::Options;
 use proctex::db::Db;
 use proctex::input::Photo;
 use proctex::params::Model;
+use proctex::params::pattern_shell as shell;
 use proctex::pattern::{Pattern, PatternKind, RampStop};
 use proctex::render::{View, render};
 use proctex::retrieve::suggest;
 use proctex::rng;
-use proctex::structure::shell;
 
 /// Cases per family.
 const CASES: usize = 8;
@@ -138,13 +138,13 @@ fn synthetic_round_trip_finds_the_right_family() {
     println!("right family: {right}/{total} = {:.0} %", 100.0 * rate);
     // Measured (72 cases, 2,560 database entries per family and 5,120 for perlin and cells,
     // families ranked by structure distance with the database's fine-grain rule, two distinct
-    // refinement starts of 40 evaluations per family, OCCAM 0.2, rings centred inside the
+    // refinement starts of 40 evaluations per family, noise-model margin 0.2, rings centred inside the
     // image, tones of a family with a joint network paired by `two_tone::network_phase` where
     // the query's is clear): 66 right (92 %), 67 by refined structure distance alone; the
     // misses: two perlin (taken for cells and wood lines), a turbulence and a ridged case
     // taken for each other, a ridged case for wood lines, a rings case for the noise model.
     // Before the network pairing (tones paired by the quantiles alone): 65 (90 %), 65. With
-    // OCCAM 0.25 and no fine-grain rule: 63. With OCCAM 0.6: 59, three coarse structured
+    // margin 0.25 and no fine-grain rule: 63. With 0.6: 59, three coarse structured
     // queries lost to the noise model. Before the families' ranges were cut to their own
     // looks, with queries whose features could be longer than the query and one start of 60
     // evaluations: 43 (60 %). The misses left are near ties between stochastic families and a

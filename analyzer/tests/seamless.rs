@@ -121,7 +121,7 @@ fn structured_tiles_wrap_seamlessly() {
         for seed in 1..=8u32 {
             let mut pattern = Pattern::new(kind, 9.0 + 3.0 * seed as f32);
             pattern.rotation_deg = 25.0 * seed as f32;
-            let mut params = proctex::structure::shell(pattern, seed, false);
+            let mut params = proctex::params::pattern_shell(pattern, seed, false);
             params.colour = base.colour;
             if let Model::Structured(m) = &mut params.model {
                 m.residual = base.model.noise_layer().clone();

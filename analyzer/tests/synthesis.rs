@@ -124,7 +124,7 @@ fn histogram_matching_improves_the_distribution() {
             ..Options::default()
         };
         let syn = synthesize(&photo, &o).unwrap();
-        proctex::evaluate::colour_distance(&photo, &syn)
+        proctex::distance::colour_distance(&photo, &syn)
     };
     let (on, off) = (gap(true), gap(false));
     assert!(on < off, "with histogram {on}, without {off}");
@@ -262,7 +262,7 @@ fn solid_texture_slices_are_continuous_in_z() {
     // The solid slice has the photo's colour statistics too.
     let photo = sample("stk_rock_mountain_512.png");
     let big = render(&p, 256, 256, &View::default()).to_photo();
-    let d = proctex::evaluate::colour_distance(&photo, &big);
+    let d = proctex::distance::colour_distance(&photo, &big);
     assert!(d < 0.03, "{d}");
 }
 
@@ -291,7 +291,7 @@ fn synth_has_exactly_the_input_size() {
     assert_eq!((syn.width, syn.height), (512, 512));
     // Analysing at 256 keeps frequencies up to 1/4 cycle per photo pixel; compared at that
     // resolution the synthesis matches the photo.
-    let d = proctex::evaluate::distances(&big.reduce_to(256), &syn.to_owned().reduce_to(256));
+    let d = proctex::distance::distances(&big.reduce_to(256), &syn.to_owned().reduce_to(256));
     // (The synthesis is rendered 2× magnified and box-reduced, the photo box-reduced from real
     // detail, so the finest octave differs by a few dB; two halves of grass differ by ~2 dB.)
     assert!(d.spectrum_db < 4.0 && d.colour < 0.02, "{d:?}");

@@ -32,8 +32,10 @@ test('benchmark: 12 MP drop to first frame, longest frame, 2D frame time at 1024
   await openApp(page, { view: null }); // the whole panel (the tests use a 288² view)
   const lines = [];
   const out = (s) => { lines.push(s); console.log(s); };
-  const wasm = fs.statSync(path.join(ROOT, 'www', 'pkg', 'proctex_web_bg.wasm')).size;
-  out(`wasm after wasm-opt: ${wasm} bytes (${(wasm / 1e6).toFixed(2)} MB)`);
+  for (const module of ['proctex_web', 'proctex_worker']) {
+    const wasm = fs.statSync(path.join(ROOT, 'www', 'pkg', `${module}_bg.wasm`)).size;
+    out(`wasm after wasm-opt, ${module}: ${wasm} bytes (${(wasm / 1e6).toFixed(2)} MB)`);
+  }
 
   // A 12-megapixel JPEG (4000×3000) made in the page from a shipped sample.
   const size = await page.evaluate(async () => {

@@ -1,4 +1,4 @@
-// The automatic model choice in the app (issue 5): after each analysis the worker retrieves and
+// The automatic model choice in the app: after each analysis the worker retrieves and
 // refines every structured model family, the app lists them ranked with thumbnails and scores,
 // adopts the best, and a click adopts another.
 const { test } = require('@playwright/test');

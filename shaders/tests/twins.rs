@@ -4,7 +4,7 @@
 /// the same name, except for the ones listed in `RENAMED`.
 const TWIN_FILES: [(&str, &[&str]); 16] = [
     ("hash.wgsl", &["analyzer/src/rng.rs"]),
-    ("pattern.wgsl", &["analyzer/src/pattern.rs"]),
+    ("pattern.wgsl", &["analyzer/src/render/pattern.rs"]),
     (
         "morph.wgsl",
         &["analyzer/src/morph.rs", "analyzer/src/histogram.rs"],

@@ -145,7 +145,7 @@ fn uniform_layout_matches_rust() {
     );
     assert_eq!(
         constant("WARP_OFFSET").parse::<f32>().unwrap(),
-        proctex::pattern::WARP_OFFSET
+        proctex::render::pattern::WARP_OFFSET
     );
 }
 

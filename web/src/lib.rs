@@ -2,7 +2,6 @@
 //! in `shaders/`; it is plain wgpu (no UI types) so that native tests can run it headless and
 //! compare its pixels with the CPU reference renderer.
 
-pub mod jobs;
 pub mod presets;
 pub mod renderer;
 pub mod tile_export;
@@ -12,3 +11,6 @@ pub mod view_cache;
 mod app;
 #[cfg(target_arch = "wasm32")]
 mod web;
+
+/// The worker's jobs (`proctex-worker`): the message types the app reads, and the CPU preview.
+pub use proctex_worker::jobs;

@@ -4,8 +4,8 @@
 use wasm_bindgen::prelude::*;
 
 use crate::app::{Command, PhotoPreview, ProctexApp, SNAPSHOT, ViewMode, send};
-use crate::jobs;
 use proctex::params::Params;
+use proctex_worker::jobs;
 
 /// The running app (so JS can ask whether it panicked).
 #[wasm_bindgen]
@@ -45,227 +45,6 @@ pub async fn start(canvas: web_sys::HtmlCanvasElement) -> Result<WebHandle, JsVa
         )
         .await?;
     Ok(WebHandle { runner })
-}
-
-// ---- Worker side: pure computations, no app (see `jobs`). ----
-
-/// Worker job: analyses `crop` (`[x, y, w, h]` photo pixels, or empty for all) of an RGBA image
-/// and returns the report (params and plot statistics) as JSON; throws the error's message.
-#[wasm_bindgen(js_name = analyzeRgba)]
-pub fn analyze_rgba(
-    rgba: &[u8],
-    width: u32,
-    height: u32,
-    crop: Vec<u32>,
-    seed: u32,
-) -> Result<String, JsValue> {
-    let report =
-        jobs::analyze_rgba(rgba, width, height, parse_crop(&crop)?, seed).map_err(js_error)?;
-    serde_json::to_string(&report).map_err(js_error)
-}
-
-/// Worker job: the model's plot statistics for a params document, as JSON.
-#[wasm_bindgen(js_name = modelStats)]
-pub fn model_stats(params_json: String) -> Result<String, JsValue> {
-    let p = Params::from_json(&params_json).map_err(js_error)?;
-    serde_json::to_string(&jobs::model_stats(&p)).map_err(js_error)
-}
-
-/// Worker job: the CPU reference render of a params document as RGBA8 (the preview shown when
-/// the browser has no WebGPU).
-#[wasm_bindgen(js_name = previewRgba)]
-pub fn preview_rgba(params_json: String, width: u32, height: u32) -> Result<Vec<u8>, JsValue> {
-    let p = Params::from_json(&params_json).map_err(js_error)?;
-    Ok(jobs::preview_rgba(&p, width.min(2048), height.min(2048)))
-}
-
-thread_local! {
-    /// The pattern database the worker fetched (`loadDatabase`), for the worker's lifetime.
-    static DATABASE: std::cell::Cell<Option<&'static proctex::db::Db>> =
-        const { std::cell::Cell::new(None) };
-}
-
-fn database() -> Result<&'static proctex::db::Db, JsValue> {
-    DATABASE.with(|d| d.get()).ok_or_else(|| {
-        JsValue::from_str("the pattern database is not loaded: structured models are unavailable")
-    })
-}
-
-/// Worker job: reads the pattern database file (`patterns.ptxdb`, fetched by the worker rather
-/// than embedded in the wasm); returns its number of models; throws when the bytes are bad.
-#[wasm_bindgen(js_name = loadDatabase)]
-pub fn load_database(bytes: &[u8]) -> Result<usize, JsValue> {
-    let db = proctex::db::Db::from_bytes(bytes).map_err(js_error)?;
-    let n = db.entries.len();
-    DATABASE.with(|d| d.set(Some(Box::leak(Box::new(db)))));
-    Ok(n)
-}
-
-/// Worker job: the automatic model choice of a photo (or crop) in steps (see
-/// `jobs::SuggestJob`): `new` retrieves, each `step` refines one family, `rank` ranks.
-#[wasm_bindgen]
-#[derive(Debug)]
-pub struct Suggestions {
-    job: jobs::SuggestJob,
-}
-
-#[wasm_bindgen]
-impl Suggestions {
-    /// Retrieval for `crop` (`[x, y, w, h]` or empty) of an RGBA image; throws the error's
-    /// message (no database, bad crop).
-    #[wasm_bindgen(constructor)]
-    pub fn new(
-        rgba: &[u8],
-        width: u32,
-        height: u32,
-        crop: Vec<u32>,
-        seed: u32,
-    ) -> Result<Suggestions, JsValue> {
-        let crop = parse_crop(&crop)?;
-        let job = jobs::SuggestJob::new(database()?, rgba, width, height, crop, seed)
-            .map_err(js_error)?;
-        Ok(Suggestions { job })
-    }
-
-    /// Families refined so far.
-    pub fn done(&self) -> usize {
-        self.job.progress().0
-    }
-
-    /// Families that may be refined (an upper bound: the refinement's bound skips some).
-    pub fn steps(&self) -> usize {
-        self.job.progress().1
-    }
-
-    /// The families of the current refinement round still to refine (empty: the refinement
-    /// is complete). Refine them (here or in helpers), store them, then ask again.
-    pub fn pending(&self) -> Vec<u32> {
-        self.job.pending().into_iter().map(|i| i as u32).collect()
-    }
-
-    /// Refines the next family; returns whether any remain.
-    pub fn step(&mut self) -> Result<bool, JsValue> {
-        Ok(self.job.step(database()?))
-    }
-
-    /// The analysis-size photo the job works on, RGB `f32` triples (for `Refiner`).
-    #[wasm_bindgen(js_name = preparedPixels)]
-    pub fn prepared_pixels(&self) -> Vec<f32> {
-        self.job.prepared().0
-    }
-
-    /// Width and height of `preparedPixels`.
-    #[wasm_bindgen(js_name = preparedSize)]
-    pub fn prepared_size(&self) -> Vec<u32> {
-        let (_, w, h) = self.job.prepared();
-        vec![w, h]
-    }
-
-    /// Refines family `i` here without storing it; returns the result as JSON for
-    /// `setRefined`.
-    pub fn refine(&self, i: usize) -> Result<String, JsValue> {
-        Ok(self.job.refine(database()?, i))
-    }
-
-    /// Stores family `i`'s refinement (JSON from `refine` here or a helper's `Refiner`).
-    #[wasm_bindgen(js_name = setRefined)]
-    pub fn set_refined(&mut self, i: usize, json: &str) -> Result<(), JsValue> {
-        self.job.set_refined(i, json).map_err(js_error)
-    }
-
-    /// Ranks the candidates (refined so far) and returns the rows as JSON.
-    pub fn rank(&mut self) -> Result<String, JsValue> {
-        let rows = self.job.rank(database()?);
-        serde_json::to_string(&rows).map_err(js_error)
-    }
-
-    /// The ranked candidates' thumbnails, `THUMB_SIDE²` RGBA8 each, concatenated.
-    pub fn thumbnails(&self) -> Vec<u8> {
-        self.job.thumbnails()
-    }
-
-    /// The report JSON of ranked candidate `i` fitted at analysis size.
-    pub fn report(&self, i: usize) -> Result<String, JsValue> {
-        let r = self.job.report(database()?, i).map_err(js_error)?;
-        serde_json::to_string(&r).map_err(js_error)
-    }
-}
-
-/// Helper-worker job: refines families of a `Suggestions` job of another worker, from that
-/// job's `preparedPixels`, `preparedSize` and seed (the same retrieval, so the same results).
-#[wasm_bindgen]
-#[derive(Debug)]
-pub struct Refiner {
-    inner: jobs::Refiner,
-}
-
-#[wasm_bindgen]
-impl Refiner {
-    /// Retrieval for the prepared photo; throws when the database is not loaded or the pixels
-    /// do not fit the size.
-    #[wasm_bindgen(constructor)]
-    pub fn new(rgb: &[f32], width: u32, height: u32, seed: u32) -> Result<Refiner, JsValue> {
-        let inner = jobs::Refiner::new(database()?, rgb, width, height, seed).map_err(js_error)?;
-        Ok(Refiner { inner })
-    }
-
-    /// Family `i`'s refinement as JSON (for `Suggestions.setRefined`).
-    pub fn refine(&self, i: usize) -> Result<String, JsValue> {
-        Ok(self.inner.refine(database()?, i))
-    }
-}
-
-/// Benchmark job (e2e/bench; the JS side times each call): one stage of model retrieval on an
-/// RGBA image, as the worker's suggestion job runs it. `stage`: `"ffts"` (the descriptor's own
-/// FFTs on a 128² map, the cost floor), `"descriptor"` (reduction to the ranking size,
-/// two-tone structure map, descriptor), `"retrieval"` (all of that, then every family's best
-/// database entries over rotations and tone swaps: `Suggestions`' constructor without the
-/// crop). Returns a checksum.
-#[wasm_bindgen(js_name = benchRetrieval)]
-pub fn bench_retrieval(rgba: &[u8], width: u32, height: u32, stage: &str) -> Result<f64, JsValue> {
-    use proctex::retrieve::{RANK_SIZE, Refinement, Suggester};
-    let photo = proctex::input::Photo::from_rgba8(width, height, rgba).map_err(js_error)?;
-    let small = photo.reduced(RANK_SIZE).unwrap_or_else(|| photo.clone());
-    match stage {
-        "ffts" => {
-            // Any 128² map will do: the FFTs' cost does not depend on the values. The photo's
-            // first channel, reduced (a cheap box average), stands in for the structure map.
-            let plane: Vec<f32> = small.pixels.iter().map(|p| p[0]).collect();
-            let map = proctex::gabor::descriptor_image(
-                &plane,
-                small.width as usize,
-                small.height as usize,
-            );
-            Ok(proctex::gabor::fft_floor(&map) as f64)
-        }
-        "descriptor" => {
-            let tt = proctex::two_tone::two_tone(&small);
-            let (q, _) =
-                proctex::db::query(&tt.structure, small.width as usize, small.height as usize);
-            Ok(q.0.iter().sum::<f32>() as f64)
-        }
-        "retrieval" => {
-            let opts = proctex::analyze::Options::default();
-            let s = Suggester::new(database()?, &photo, &opts, Refinement::default());
-            Ok(s.steps() as f64)
-        }
-        _ => Err(JsValue::from_str(
-            "stage must be ffts, descriptor or retrieval",
-        )),
-    }
-}
-
-/// A crop from JS: `[x, y, w, h]`, or empty for the whole photo.
-fn parse_crop(crop: &[u32]) -> Result<Option<[u32; 4]>, JsValue> {
-    match crop {
-        [] => Ok(None),
-        [x, y, w, h] => Ok(Some([*x, *y, *w, *h])),
-        _ => Err(JsValue::from_str("crop must be [x, y, w, h]")),
-    }
-}
-
-fn js_error(e: impl std::fmt::Display) -> JsValue {
-    JsValue::from_str(&e.to_string())
 }
 
 // ---- UI side: the page tells the app what the worker did. ----
@@ -495,4 +274,8 @@ pub fn request_repaint() {
 #[wasm_bindgen]
 pub fn state() -> String {
     SNAPSHOT.with(|s| serde_json::to_string(&*s.borrow()).unwrap_or_default())
+}
+
+fn js_error(e: impl std::fmt::Display) -> JsValue {
+    JsValue::from_str(&e.to_string())
 }

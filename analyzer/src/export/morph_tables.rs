@@ -128,7 +128,7 @@ impl MorphStructure {
         t: [Option<crate::params::Tone>; 2],
     ) -> MorphStructure {
         use crate::morph::{ramp_table, ramp_union, shorter_turn, tone_grid};
-        use crate::pattern::ramp_rows;
+        use crate::render::pattern::ramp_rows;
         let mut out = MorphStructure::NOISE;
         let p = moving.unwrap_or([fixed, fixed]);
         let flags = moving.is_some() as u32

@@ -3,9 +3,9 @@
 //! changing only its colours (ramp, residual amplitudes and histogram, tone curve); drawing
 //! these once makes each further render a per-pixel colour mapping with the same bits.
 
+use super::pattern::{pattern, ramp};
 use super::{Image, Prepared, View, band_noise, band_sum, colour, tile_for};
 use crate::params::Params;
-use crate::pattern::{pattern, ramp};
 
 /// The colour-independent per-pixel values of a render of some params at some size and view.
 /// [`render_with_fields`] uses them for any params that share the pattern, its placement, the
@@ -157,7 +157,7 @@ mod tests {
 
     /// A structured model whose residual has four bands, one of them silent in one channel.
     fn structured(kind: PatternKind, seed: u32) -> Params {
-        let mut p = crate::structure::shell(Pattern::new(kind, 9.0), seed, false);
+        let mut p = crate::params::pattern_shell(Pattern::new(kind, 9.0), seed, false);
         if let Model::Structured(m) = &mut p.model {
             m.residual.weights = [
                 vec![0.2, 0.3, 0.1, 0.05],

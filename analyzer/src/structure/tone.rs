@@ -24,7 +24,7 @@ const TONE_STRENGTHS: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 /// 2. **Strength.** The render of `params.seed` (the one the user sees: the ramp was fitted
 ///    with its structure image) is mapped through the curve at each strength `λ` of
 ///    [`TONE_STRENGTHS`], `identity + λ·(curve − identity)`, and compared with the photo
-///    (sliced Wasserstein colour distance, [`crate::evaluate::colour_distance`]); the `λ` of
+///    (sliced Wasserstein colour distance, [`crate::distance::colour_distance`]); the `λ` of
 ///    least distance is kept, none if 0.
 ///
 /// Measured on the fidelity protocol (docs/measurements.md): fitted on one render, the curve overfits that
@@ -49,7 +49,7 @@ pub(super) fn fit_tone_rendered(
     seeds: u32,
     fields: Option<&Fields>,
 ) -> (Option<crate::params::Tone>, Option<Vec<[f32; 3]>>) {
-    use crate::evaluate::ColourQuantiles;
+    use crate::distance::ColourQuantiles;
     use crate::render::{View, render, render_with_fields};
     let n = photo.pixels.len();
     if n < 64 || !matches!(params.model, Model::Structured(_)) {

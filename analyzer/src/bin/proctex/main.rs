@@ -8,7 +8,8 @@ use std::time::Instant;
 
 use proctex::analyze::Options;
 use proctex::db::Db;
-use proctex::evaluate::{distances, synthesize_model_progress};
+use proctex::distance::distances;
+use proctex::evaluate::synthesize_model_progress;
 use proctex::input::{Crop, Photo};
 use proctex::params::Params;
 use proctex::render::{Image, View, period_texels, render};

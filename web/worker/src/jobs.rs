@@ -3,14 +3,14 @@
 //! plots, and the CPU preview for browsers without WebGPU.
 //!
 //! Plain Rust over the analyzer, with no browser types, so that native tests run it. The
-//! worker calls it through the wasm-bindgen functions in `web.rs`; results travel to the UI
+//! worker calls it through the wasm-bindgen functions in `exports.rs`; results travel to the UI
 //! thread as JSON.
 
 use proctex::analyze::{
     Options, analyze_photo, analyze_photo_with, analyze_prepared, prepare_photo,
 };
 use proctex::db::Db;
-use proctex::evaluate::radial_spectrum;
+use proctex::distance::radial_spectrum;
 use proctex::input::Photo;
 use proctex::params::Params;
 use proctex::render::{View, render};
@@ -26,7 +26,7 @@ pub const STATS_SIZE: u32 = 256;
 /// Statistics of an image for the plots: radially averaged luminance power and RGB histograms.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ImageStats {
-    /// Power per quarter-octave ring, finest first (see `evaluate::radial_spectrum`); ring `k`
+    /// Power per quarter-octave ring, finest first (see `distance::radial_spectrum`); ring `k`
     /// ends at `2^−(1 + k/4)` cycles per texel.
     pub spectrum: Vec<f64>,
     /// Per RGB channel, [`HIST_BINS`] densities over `[0, 1]` (each sums to 1).
@@ -386,7 +386,7 @@ mod tests {
 
     fn sample() -> (Vec<u8>, u32, u32) {
         let path = format!(
-            "{}/../www/samples/stk_rock_mountain_512.png",
+            "{}/../../www/samples/stk_rock_mountain_512.png",
             env!("CARGO_MANIFEST_DIR")
         );
         let p = Photo::decode(&std::fs::read(path).unwrap()).unwrap();

@@ -1,0 +1,555 @@
+//! The structured models' per-pixel functions: a pattern's structure value at a point and
+//! the colour ramp, the twins of `shaders/pattern.wgsl` (same names, same operation order in
+//! f32). They read the pattern's place in the prepared uniform block ([`Prepared`]), which is
+//! why they live with the renderer; the families, their values and ranges are
+//! [`crate::pattern`]'s.
+
+use crate::noise::{Tile, band_fade, noise2, noise2_periodic, noise3, whole_period};
+use crate::pattern::{OCTAVES, Pattern};
+use crate::rng;
+
+use super::Prepared;
+
+/// A smooth step from 0 at `e0` to 1 at `e0 + w` (`w > 0`): the soft edge of joints.
+#[inline]
+pub fn soft_step(e0: f32, w: f32, x: f32) -> f32 {
+    let t = ((x - e0) / w).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// A uniform number in (0, 1) for cell `(ix, iy)` and use `k`: the cell patterns' randomness.
+#[inline]
+pub fn cell_hash(prep: &Prepared, ix: i32, iy: i32, k: u32) -> f32 {
+    let index = (ix as u32).wrapping_mul(0x8da6_b343) ^ (iy as u32).wrapping_mul(0xd816_3841) ^ k;
+    rng::uniform(prep.pattern[2], rng::stream::CELLS, index) as f32
+}
+
+/// How far apart (in noise units) cells' `warp` reads its two displacement noises.
+pub const WARP_OFFSET: f32 = 19.3;
+
+/// Cell index `i` wrapped at `n` cells (a seamless tile's lattice, see [`pattern_at`]); `i`
+/// itself for `n = 0` (the infinite texture).
+#[inline]
+pub fn wrap_cell(i: i32, n: i32) -> i32 {
+    if n > 0 { i.rem_euclid(n) } else { i }
+}
+
+/// The whole number of cells of width `pitch` (and rows of height 1) that the periods `wrap`
+/// of [`pattern_at`] hold; `[0, 0]` (no wrap) for `wrap[0] = 0`.
+#[inline]
+pub fn wrap_cells(pitch: f32, wrap: [f32; 2]) -> [i32; 2] {
+    if wrap[0] > 0.0 {
+        [
+            (wrap[0] / pitch + 0.5).floor() as i32,
+            (wrap[1] + 0.5).floor() as i32,
+        ]
+    } else {
+        [0, 0]
+    }
+}
+
+/// [`cell_hash`] of cell `(ix, iy)` of a lattice that wraps at `cells` (0: does not).
+#[inline]
+pub fn cell_hash_wrapped(prep: &Prepared, ix: i32, iy: i32, k: u32, cells: [i32; 2]) -> f32 {
+    cell_hash(prep, wrap_cell(ix, cells[0]), wrap_cell(iy, cells[1]), k)
+}
+
+/// The lower edge of row `k` of planks: `k + widths·(h(k) − ½)`, `h` the row's hash (wrapped
+/// at `rows`, 0: not), so that with `widths` ≤ ½ (the searched range) each edge stays within ¼
+/// of its integer and rows are ½–1½ units wide; at 1 (the range's end) within ½, rows 0–2
+/// units wide, edges never crossing.
+///
+/// Ours: the planks of a real floor or wall are seldom of one width (old wood's vary about
+/// 2:1), and rows of equal width put the pattern's power into the harmonics of one period,
+/// quarter-octave rings of the spectrum ±3 dB around the photo's (old wood, 128² patches).
+#[inline]
+pub fn plank_edge(prep: &Prepared, k: i32, widths: f32, rows: i32) -> f32 {
+    k as f32 + widths * (cell_hash_wrapped(prep, 0, k, 2, [0, rows]) - 0.5)
+}
+
+/// The row of planks (see [`plank_edge`]) that `y` falls in and its lower and upper edges:
+/// `[row, lower, upper]` (the row as a float, as the shader returns it).
+#[inline]
+pub fn plank_row(prep: &Prepared, y: f32, widths: f32, rows: i32) -> [f32; 3] {
+    let k = y.floor() as i32;
+    let lo = plank_edge(prep, k, widths, rows);
+    let hi = plank_edge(prep, k + 1, widths, rows);
+    if y < lo {
+        [(k - 1) as f32, plank_edge(prep, k - 1, widths, rows), lo]
+    } else if y >= hi {
+        [(k + 1) as f32, hi, plank_edge(prep, k + 2, widths, rows)]
+    } else {
+        [k as f32, lo, hi]
+    }
+}
+
+/// Noise octave `k` (frequency `2^k` per pattern unit) at pattern point `q`. With `per[0] > 0`
+/// (a seamless tile; plane textures only) `q` repeats with period `per` per axis, and the
+/// octave is made to repeat with it: its frequency is moved to the nearest whole number of
+/// noise coefficients over the period ([`whole_period`]), as the seamless tile does with the
+/// noise model's bands.
+#[inline]
+pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize, per: [f32; 2]) -> f32 {
+    let f = (1u32 << k) as f32;
+    let o = prep.pattern_offsets[k];
+    if prep.solid {
+        noise3(
+            &tile.data,
+            tile.n,
+            [q[0] * f + o[0], q[1] * f + o[1], q[2] * f + o[2]],
+        )
+    } else if per[0] > 0.0 {
+        let n = tile.n as f32;
+        let m = [whole_period(per[0] * f, n), whole_period(per[1] * f, n)];
+        noise2_periodic(
+            &tile.data,
+            tile.n,
+            [q[0] / per[0] * m[0] + o[0], q[1] / per[1] * m[1] + o[1]],
+            m,
+        )
+    } else {
+        noise2(&tile.data, tile.n, [q[0] * f + o[0], q[1] * f + o[1]])
+    }
+}
+
+/// The octaves summed with amplitude ratio `gain`, each octave's noise `n` taken as `n`
+/// (`mode` 0: fractal noise, unit variance when nothing is faded), `|n|` (1: turbulence,
+/// Perlin 1985) or `exp(−sharpness·|n|)` (2: ridged, crests where the noise crosses 0); modes 1
+/// and 2 normalised by the amplitudes' sum. `lfp`: log2 of the pixel footprint in pattern units
+/// (octaves fade out as [`band_fade`] fades bands). `per`: `q`'s period (see [`octave`]).
+#[allow(clippy::too_many_arguments)] // the twin of the WGSL function's argument list
+#[inline]
+pub fn octaves(
+    prep: &Prepared,
+    tile: &Tile,
+    q: [f32; 3],
+    gain: f32,
+    mode: u32,
+    sharpness: f32,
+    lfp: f32,
+    per: [f32; 2],
+) -> f32 {
+    let mut sum = 0.0f32;
+    let mut norm = 0.0f32;
+    let mut amp = 1.0f32;
+    for k in 0..OCTAVES {
+        let fade = band_fade(0, lfp + k as f32);
+        if fade > 0.0 {
+            let n = octave(prep, tile, q, k, per);
+            let v = match mode {
+                0 => n,
+                1 => n.abs(),
+                _ => (-sharpness * n.abs()).exp(),
+            };
+            sum += amp * fade * v;
+        }
+        norm += if mode == 0 { amp * amp } else { amp };
+        amp *= gain;
+    }
+    if mode == 0 {
+        sum / norm.sqrt()
+    } else {
+        sum / norm
+    }
+}
+
+/// Distance to the nearest joint of the unit cell that `x` (in cells) and `y` fall in, in
+/// units of the cell's height (`aspect`: cell width / height).
+#[inline]
+pub fn joint_distance(fx: f32, fy: f32, aspect: f32) -> f32 {
+    (fx.min(1.0 - fx) * aspect).min(fy.min(1.0 - fy))
+}
+
+/// The structure value of the pattern at texel `u` (pixel footprint `2^log2_fp` texels).
+pub fn pattern(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> f32 {
+    let [is, c, s, log2_is] = prep.pattern_transform;
+    let q = [
+        (c * u[0] + s * u[1]) * is,
+        (-s * u[0] + c * u[1]) * is,
+        u[2] * is,
+    ];
+    pattern_at(prep, tile, q, log2_fp + log2_is, [0.0, 0.0])
+}
+
+/// The periods in pattern units, along the pattern's own axes, of a seamless tile whose side
+/// spans `span` pattern units (see [`pattern_at`]): `span` moved to the nearest whole number
+/// (at least 1) of the family's lattice pitch along each axis (rows of height 1; cells, bricks,
+/// planks of width aspect, stretch or length; wood lines one per unit), `span` itself along an
+/// axis with no lattice (the noise octaves round their own periods).
+pub fn tile_periods(prep: &Prepared, span: f32) -> [f32; 2] {
+    let w = prep.pattern_values;
+    let whole = |pitch: f32| pitch * (span / pitch + 0.5).floor().max(1.0);
+    match prep.pattern[0] {
+        4 | 5 | 7 => [whole(w[0]), whole(1.0)],
+        // Staggered cells close their bond over an even number of rows.
+        6 if w[5] > 0.0 => [whole(w[4]), whole(2.0)],
+        6 => [whole(w[4]), whole(1.0)],
+        8 => [span, whole(1.0)],
+        _ => [span, span],
+    }
+}
+
+/// The structure value at pattern point `q` (`lfp`: log2 of the pixel footprint in pattern
+/// units). `wrap` (0: none) makes it periodic, for a seamless tile (plane textures only): `q`
+/// then repeats with period `wrap` along the pattern's axes ([`tile_periods`]), the lattice
+/// families' cell indices wrap at the whole number of cells the period holds (cell hashes, row
+/// shifts and jitter repeat with it; brick's row offset is moved to the nearest multiple of
+/// 1 / rows so that the bond closes), the noise octaves repeat ([`octave`]), and rings take
+/// the torus distance to their centre (nearest copy).
+pub fn pattern_at(prep: &Prepared, tile: &Tile, q: [f32; 3], lfp: f32, wrap: [f32; 2]) -> f32 {
+    let [_, c, s, _] = prep.pattern_transform;
+    let w = prep.pattern_values;
+    let soft = lfp.exp2();
+    // The noise families' octaves along the pattern stretched by its first value.
+    let stretched = |mode: u32, sharpness: f32| {
+        let per = [wrap[0] / w[0], wrap[1]];
+        let q = [q[0] / w[0], q[1], q[2]];
+        octaves(prep, tile, q, w[1], mode, sharpness, lfp, per)
+    };
+    match prep.pattern[0] {
+        // perlin: stretch, roughness, contrast, threshold
+        1 => {
+            let n = stretched(0, 0.0);
+            1.0 / (1.0 + (-w[2] * (n - w[3])).exp())
+        }
+        // turbulence: stretch, roughness, contrast
+        2 => {
+            let t = stretched(1, 0.0);
+            1.0 - (-w[2] * t).exp()
+        }
+        // ridged: stretch, roughness, sharpness
+        3 => stretched(2, w[2]),
+        // grid: aspect, mortar, bevel, variation
+        4 => {
+            let n = wrap_cells(w[0], wrap);
+            let x = q[0] / w[0];
+            let (ix, iy) = (x.floor(), q[1].floor());
+            let d = joint_distance(x - ix, q[1] - iy, w[0]);
+            let shade = 1.0 - w[3] * cell_hash_wrapped(prep, ix as i32, iy as i32, 0, n);
+            soft_step(0.5 * w[1], w[2].max(soft), d) * shade
+        }
+        // brick: aspect, mortar, row_offset, jitter, bevel, variation
+        5 => {
+            let n = wrap_cells(w[0], wrap);
+            let iy = q[1].floor();
+            let (row, offset) = if n[1] > 0 {
+                let row = wrap_cell(iy as i32, n[1]);
+                let rows = n[1] as f32;
+                (row as f32, (w[2] * rows + 0.5).floor() / rows)
+            } else {
+                (iy, w[2])
+            };
+            let shift = row * offset + w[3] * (cell_hash(prep, 0, row as i32, 1) - 0.5);
+            let x = q[0] / w[0] + shift;
+            let ix = x.floor();
+            let d = joint_distance(x - ix, q[1] - iy, w[0]);
+            let shade = 1.0 - w[5] * cell_hash_wrapped(prep, ix as i32, iy as i32, 0, n);
+            soft_step(0.5 * w[1], w[4].max(soft), d) * shade
+        }
+        // cells: jitter, mortar, bevel, variation, stretch, stagger, warp
+        6 => {
+            let n = wrap_cells(w[4], wrap);
+            let mut p = [q[0] / w[4], q[1]];
+            if w[6] > 0.0 {
+                // Bent rows: the lattice displaced by `warp` × two fractal noises (octaves of
+                // 4 cells and finer), the second read `WARP_OFFSET` noise units away.
+                let per = [0.25 * wrap[0] / w[4], 0.25 * wrap[1]];
+                let b = [0.25 * p[0], 0.25 * p[1], 0.25 * q[2]];
+                let gx = octaves(prep, tile, b, 0.5, 0, 0.0, lfp - 2.0, per);
+                let b2 = [b[0] + WARP_OFFSET, b[1], b[2]];
+                let gy = octaves(prep, tile, b2, 0.5, 0, 0.0, lfp - 2.0, per);
+                p = [p[0] + w[6] * gx, p[1] + w[6] * gy];
+            }
+            let iy = p[1].floor();
+            let fy = p[1] - iy;
+            let (mut f1, mut f2) = (1e9f32, 1e9f32);
+            let mut id = [0i32; 2];
+            for dy in -1..=1 {
+                let cy = iy as i32 + dy;
+                // Every other row (of the wrapped lattice) shifted by `stagger` half cells.
+                let shift = 0.5 * w[5] * (wrap_cell(cy, n[1]).rem_euclid(2)) as f32;
+                let x = p[0] - shift;
+                let ix = x.floor();
+                let fx = x - ix;
+                for dx in -1..=1 {
+                    let cx = ix as i32 + dx;
+                    let px = dx as f32 + 0.5 + w[0] * (cell_hash_wrapped(prep, cx, cy, 0, n) - 0.5);
+                    let py = dy as f32 + 0.5 + w[0] * (cell_hash_wrapped(prep, cx, cy, 1, n) - 0.5);
+                    let (ex, ey) = (px - fx, py - fy);
+                    let d = ex * ex + ey * ey;
+                    if d < f1 {
+                        f2 = f1;
+                        f1 = d;
+                        id = [cx, cy];
+                    } else if d < f2 {
+                        f2 = d;
+                    }
+                }
+            }
+            let edge = 0.5 * (f2.sqrt() - f1.sqrt());
+            let shade = 1.0 - w[3] * cell_hash_wrapped(prep, id[0], id[1], 2, n);
+            soft_step(0.5 * w[1], w[2].max(soft), edge) * shade
+        }
+        // planks: length, gap, bevel, variation, grain, widths
+        7 => {
+            let n = wrap_cells(w[0], wrap);
+            let [row, lo, hi] = plank_row(prep, q[1], w[5], n[1]);
+            let iy = row as i32;
+            let x = q[0] / w[0] + cell_hash_wrapped(prep, 0, iy, 1, [0, n[1]]);
+            let ix = x.floor();
+            let fx = x - ix;
+            let d = (fx.min(1.0 - fx) * w[0]).min((q[1] - lo).min(hi - q[1]));
+            let per = [wrap[0] * 0.125, wrap[1] * 4.0];
+            let g = octaves(
+                prep,
+                tile,
+                [q[0] * 0.125, q[1] * 4.0, q[2]],
+                0.5,
+                0,
+                0.0,
+                lfp + 2.0,
+                per,
+            );
+            let shade = (1.0 - w[3] * cell_hash_wrapped(prep, ix as i32, iy, 0, n))
+                * (1.0 - w[4] * (0.5 + 0.5 * g.tanh()));
+            soft_step(0.5 * w[1], w[2].max(soft), d) * shade
+        }
+        // wood lines: stretch, distortion, sharpness, roughness
+        8 => {
+            let per = [0.25 * wrap[0] / w[0], 0.25 * wrap[1]];
+            let n = octaves(
+                prep,
+                tile,
+                [0.25 * q[0] / w[0], 0.25 * q[1], 0.25 * q[2]],
+                w[3],
+                0,
+                0.0,
+                lfp - 2.0,
+                per,
+            );
+            let v = q[1] + w[1] * n;
+            (0.5 + 0.5 * (std::f32::consts::TAU * v).sin())
+                .max(1e-6)
+                .powf(w[2])
+        }
+        // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y (the centre at
+        // texel `scale · (centre_x, centre_y)`, so the rings turn about it)
+        9 => {
+            let qc = [c * w[4] + s * w[5], -s * w[4] + c * w[5]];
+            let mut p = [(q[0] - qc[0]) / w[3], q[1] - qc[1], q[2]];
+            let per = [wrap[0] / w[3], wrap[1]];
+            if wrap[0] > 0.0 {
+                p[0] -= per[0] * (p[0] / per[0] + 0.5).floor();
+                p[1] -= per[1] * (p[1] / per[1] + 0.5).floor();
+            }
+            let n = octaves(
+                prep,
+                tile,
+                [0.25 * p[0], 0.25 * p[1], 0.25 * p[2]],
+                w[2],
+                0,
+                0.0,
+                lfp - 2.0,
+                [0.25 * per[0], 0.25 * per[1]],
+            );
+            let r = (p[0] * p[0] + p[1] * p[1]).sqrt() + w[0] * n;
+            (0.5 + 0.5 * (std::f32::consts::TAU * r).sin())
+                .max(1e-6)
+                .powf(w[1])
+        }
+        _ => 0.0,
+    }
+}
+
+/// The ramp's colour at structure value `s`: linear between stops, constant beyond the ends.
+pub fn ramp(prep: &Prepared, s: f32) -> [f32; 3] {
+    ramp_rows(&prep.ramp[..prep.pattern[1] as usize], s)
+}
+
+/// [`ramp`] over stops given as rows (RGB, at).
+pub fn ramp_rows(r: &[[f32; 4]], s: f32) -> [f32; 3] {
+    let n = r.len();
+    if s <= r[0][3] {
+        return [r[0][0], r[0][1], r[0][2]];
+    }
+    for i in 1..n {
+        if s < r[i][3] {
+            let a = r[i - 1];
+            let b = r[i];
+            let t = (s - a[3]) / (b[3] - a[3]);
+            return [
+                a[0] + (b[0] - a[0]) * t,
+                a[1] + (b[1] - a[1]) * t,
+                a[2] + (b[2] - a[2]) * t,
+            ];
+        }
+    }
+    let l = r[n - 1];
+    [l[0], l[1], l[2]]
+}
+
+/// The pattern's structure values over a `width × height` image at one texel per pixel (pixel
+/// centres, as the renderers sample), row-major. `tile` is the 2D noise tile of `seed`
+/// (`Tile::new_2d(seed)`; passed in because generating it costs more than the image).
+pub fn structure_image(
+    pattern: &Pattern,
+    seed: u32,
+    tile: &Tile,
+    width: u32,
+    height: u32,
+) -> Vec<f32> {
+    let prep = Prepared::new(&crate::params::pattern_shell(pattern.clone(), seed, false));
+    structure_image_prepared(&prep, tile, width, height)
+}
+
+/// [`structure_image`] with the prepared block and tile supplied.
+pub fn structure_image_prepared(prep: &Prepared, tile: &Tile, width: u32, height: u32) -> Vec<f32> {
+    let mut out = vec![0.0f32; width as usize * height as usize];
+    let row = |y: usize, line: &mut [f32]| {
+        for (x, v) in line.iter_mut().enumerate() {
+            *v = pattern(prep, tile, [x as f32 + 0.5, y as f32 + 0.5, 0.0], 0.0);
+        }
+    };
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        out.par_chunks_mut(width as usize)
+            .enumerate()
+            .for_each(|(y, l)| row(y, l));
+    }
+    #[cfg(target_arch = "wasm32")]
+    for (y, l) in out.chunks_mut(width as usize).enumerate() {
+        row(y, l);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pattern::{Pattern, PatternKind};
+
+    #[test]
+    fn rings_turn_about_their_centre() {
+        // Without distortion and ellipticity the rings' value depends only on the distance
+        // to their centre, at texel `scale · (centre_x, centre_y)` whatever the rotation.
+        let tile = Tile::new_2d(1);
+        for rotation in [0.0, 30.0, 90.0, 135.0] {
+            let mut p = Pattern::new(PatternKind::Rings, 10.0);
+            p.rotation_deg = rotation;
+            assert!(p.set("distortion", 0.0) && p.set("centre_x", 3.0) && p.set("centre_y", 5.0));
+            let prep = Prepared::new(&crate::params::pattern_shell(p, 1, false));
+            let at = |phi: f32| {
+                let u = [30.0 + 12.3 * phi.cos(), 50.0 + 12.3 * phi.sin(), 0.0];
+                pattern(&prep, &tile, u, 0.0)
+            };
+            let v0 = at(0.0);
+            for phi in [0.7, 1.9, 3.1, 4.4, 5.6] {
+                assert!((at(phi) - v0).abs() < 1e-3, "{rotation}°, {phi}");
+            }
+        }
+    }
+
+    #[test]
+    fn staggered_cells_at_jitter_0_lie_on_a_shifted_lattice() {
+        // Cells at jitter 0 are centred on the unit lattice; `stagger` 1 moves every other row
+        // by half a cell, so a point that is a centre without it falls on a joint, and `warp`
+        // bends the lattice (the same point moves off its centre).
+        let tile = Tile::new_2d(1);
+        let at = |values: &[(&str, f32)], u: [f32; 2]| {
+            let mut p = Pattern::new(PatternKind::Cells, 10.0);
+            for &(k, v) in values {
+                assert!(p.set(k, v), "{k}");
+            }
+            assert!(p.set("variation", 0.0) && p.set("bevel", 0.05));
+            let prep = Prepared::new(&crate::params::pattern_shell(p, 1, false));
+            pattern(&prep, &tile, [10.0 * u[0], 10.0 * u[1], 0.0], -6.0)
+        };
+        let square = [("jitter", 0.0)];
+        let hex = [("jitter", 0.0), ("stagger", 1.0)];
+        // Even rows (0, 2) keep their centres; odd rows (1, −1) move by half a cell.
+        for (u, centre_square, centre_hex) in [
+            ([0.5, 0.5], true, true),
+            ([3.5, 2.5], true, true),
+            ([0.5, 1.5], true, false),
+            ([1.0, 1.5], false, true),
+            ([2.0, -0.5], false, true),
+        ] {
+            for (values, centre) in [(&square[..], centre_square), (&hex[..], centre_hex)] {
+                let v = at(values, u);
+                if centre {
+                    assert!(v > 0.99, "{values:?} at {u:?}: {v} (a cell's centre)");
+                } else {
+                    assert!(v < 0.01, "{values:?} at {u:?}: {v} (a joint)");
+                }
+            }
+        }
+        let warped = [("jitter", 0.0), ("stagger", 1.0), ("warp", 1.0)];
+        let moved = [[0.5, 0.5], [3.5, 2.5], [1.0, 1.5], [6.5, 4.5], [9.0, 7.5]]
+            .iter()
+            .filter(|&&u| at(&warped, u) < 0.9)
+            .count();
+        assert!(
+            moved >= 2,
+            "warp 1 moved {moved} of 5 centres off their cells' centres"
+        );
+    }
+
+    #[test]
+    fn plank_rows_cover_the_line_with_irregular_widths() {
+        let prep = Prepared::new(&crate::params::pattern_shell(
+            Pattern::new(PatternKind::Planks, 10.0),
+            3,
+            false,
+        ));
+        // Without irregularity the rows are the integers' intervals.
+        for y in [-2.5f32, -0.01, 0.0, 0.3, 7.99] {
+            assert_eq!(
+                plank_row(&prep, y, 0.0, 0),
+                [y.floor(), y.floor(), y.floor() + 1.0]
+            );
+        }
+        // With it, every y lies in its row, between its two edges; returns the rows' widths'
+        // least and greatest.
+        let spread = |widths: f32| {
+            let mut seen = Vec::new();
+            for i in -400..400 {
+                let y = i as f32 * 0.0437;
+                let [row, lo, hi] = plank_row(&prep, y, widths, 0);
+                assert!(lo <= y && y < hi, "{y}: row {row} [{lo}, {hi})");
+                assert_eq!(lo, plank_edge(&prep, row as i32, widths, 0));
+                assert_eq!(hi, plank_edge(&prep, row as i32 + 1, widths, 0));
+                seen.push(hi - lo);
+            }
+            seen.iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), &w| (a.min(w), b.max(w)))
+        };
+        // 0.5 (the searched range's end): widths ½–1½, some rows differ clearly.
+        let (min, max) = spread(0.5);
+        assert!(
+            0.5 <= min && max <= 1.5 && max - min > 0.4,
+            "widths {min}–{max}"
+        );
+        // 1 (the range's end): edges move up to ½ either way, rows 0–2 wide, never crossing.
+        let (min, max) = spread(1.0);
+        assert!(
+            0.0 <= min && max <= 2.0 && max - min > 1.0,
+            "widths {min}–{max}"
+        );
+        // Wrapped at 6 rows, the edges repeat every 6.
+        for k in -7..7 {
+            let (a, b) = (
+                plank_edge(&prep, k, 0.5, 6),
+                plank_edge(&prep, k + 6, 0.5, 6),
+            );
+            assert!((b - a - 6.0).abs() < 1e-5, "{k}: {a} {b}");
+        }
+    }
+
+    #[test]
+    fn soft_step_is_a_clamped_smooth_step() {
+        assert_eq!(soft_step(0.1, 0.2, 0.0), 0.0);
+        assert_eq!(soft_step(0.1, 0.2, 0.3), 1.0);
+        assert!((soft_step(0.1, 0.2, 0.2) - 0.5).abs() < 1e-6);
+    }
+}
