@@ -22,13 +22,15 @@ fi
 # worker (analysis, retrieval, refinement). Two cargo runs, so that the worker crate's
 # `exports` feature stays off in the UI's build (cargo unifies features within one run).
 cargo build -p proctex-web --target wasm32-unknown-unknown --profile wasm-release
-cargo build -p proctex-worker --target wasm32-unknown-unknown --profile wasm-release
+cargo build -p proctex-worker --target wasm32-unknown-unknown --profile wasm-worker
 rm -rf www/pkg
-for module in proctex_web proctex_worker; do
+# module, cargo profile, wasm-opt level: the UI for size, the worker for speed (Cargo.toml).
+for build in "proctex_web wasm-release -Oz" "proctex_worker wasm-worker -O3"; do
+    read -r module profile level <<<"$build"
     wasm-bindgen --target web --no-typescript --out-dir www/pkg \
-        "target/wasm32-unknown-unknown/wasm-release/$module.wasm"
-    tools/node_modules/.bin/wasm-opt -Oz --enable-bulk-memory --enable-nontrapping-float-to-int \
-        --enable-sign-ext --enable-mutable-globals \
+        "target/wasm32-unknown-unknown/$profile/$module.wasm"
+    tools/node_modules/.bin/wasm-opt "$level" --enable-bulk-memory \
+        --enable-nontrapping-float-to-int --enable-sign-ext --enable-mutable-globals \
         "www/pkg/${module}_bg.wasm" -o "www/pkg/${module}_bg.wasm"
     echo "www/pkg/${module}_bg.wasm: $(stat -c %s "www/pkg/${module}_bg.wasm") bytes"
 done
