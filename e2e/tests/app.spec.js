@@ -2,7 +2,7 @@
 const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
-const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, innerSquare, ROOT } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, innerSquare, reveal, ROOT } = require('./helpers');
 
 test('opens on the sample, already rendered', async ({ page }) => {
   await openApp(page);
@@ -105,7 +105,7 @@ test('dragging the finest band weight raises and removes high-frequency energy',
   const before = await state(page);
   const square = innerSquare(before.widgets.texture, 256);
   const energy0 = highFrequencyEnergy(await grab(page, square));
-  const [x, y, w, h] = before.widgets['weight.0.0'];
+  const [x, y, w, h] = await reveal(page, 'weight.0.0');
   // The slider's rail is the left part of the widget (the value box and label follow it).
   const railLeft = x + 2, railRight = x + 100 - 2, cy = y + h / 2;
   const knob = async () => {

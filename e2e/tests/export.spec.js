@@ -2,7 +2,7 @@
 // rendered by the bare host pages (www/host-wgsl.html: raw WebGPU; www/host-glsl.html: raw
 // WebGL2), and compared with the app's own view of the same world rectangle.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, grab, clickWidget, morphRockToGrass, suggestionsFor } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, reveal, clickWidget, morphRockToGrass, suggestionsFor } = require('./helpers');
 
 // The app's 2D view of world [0, size)² at one world unit per pixel, and the shader the app
 // copies with its "Copy <lang>" button (`button`: the widget's prefix, export or morph).
@@ -104,7 +104,7 @@ async function morphHalfway(page, structured = false) {
     expect(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model.kind).toBe('structured');
   }
   await morphRockToGrass(page);
-  const [x, y, w, h] = (await state(page)).widgets['morph.t'];
+  const [x, y, w, h] = await reveal(page, 'morph.t');
   await page.mouse.move(x + 3, y + h / 2);
   await page.mouse.down();
   // Structured: to about t = 0.3, inside the first half, where the brick pattern still shows.

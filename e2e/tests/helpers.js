@@ -92,11 +92,31 @@ function innerSquare(rect, size) {
   return [left, top, size, size];
 }
 
+// The rectangle [x, y, w, h] of the app's widget `name`, scrolled into the viewport first when
+// its panel has scrolled it out (the mouse wheel over the panel, as a user scrolls it).
+async function reveal(page, name) {
+  const { height } = page.viewportSize();
+  let r, last = null;
+  for (let i = 0; i < 60; i++) {
+    const s = await state(page);
+    r = s.widgets[name];
+    if (!r) throw new Error(`no widget ${name}: ${Object.keys(s.widgets).join(', ')}`);
+    const below = r[1] + r[3] > height, above = r[1] < 0;
+    // In view, and still: egui scrolls smoothly, over several frames after a wheel event.
+    if (!below && !above && JSON.stringify(r) === JSON.stringify(last)) return r;
+    if (below || above) {
+      await page.mouse.move(r[0] + Math.min(r[2] / 2, 20), below ? height - 40 : 40);
+      await page.mouse.wheel(0, below ? 200 : -200);
+    }
+    last = r;
+    await waitFrames(page, 2);
+  }
+  throw new Error(`widget ${name} stays out of view at ${JSON.stringify(r)}`);
+}
+
 // A real mouse click at the centre of the app's widget `name`.
 async function clickWidget(page, name) {
-  const s = await state(page);
-  const r = s.widgets[name];
-  if (!r) throw new Error(`no widget ${name}: ${Object.keys(s.widgets).join(', ')}`);
+  const r = await reveal(page, name);
   await page.mouse.click(r[0] + r[2] / 2, r[1] + r[3] / 2);
   await waitFrames(page, 2);
 }
@@ -160,5 +180,5 @@ async function suggestionsFor(page, sample) {
 
 module.exports = {
   expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender,
-  innerSquare, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, ROOT,
+  innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, ROOT,
 };

@@ -1,7 +1,7 @@
 // Presets: saved with the mouse, they survive a reload; a corrupt import changes nothing; the
 // morph between two presets follows the t slider dragged with the mouse.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, clickWidget, waitAnalyses, morphRockToGrass } = require('./helpers');
+const { expect, openApp, state, waitFrames, reveal, clickWidget, waitAnalyses, morphRockToGrass } = require('./helpers');
 
 const core = (p) => ({ colour: p.colour, transform: p.transform, model: p.model, seed: p.seed });
 
@@ -38,7 +38,7 @@ test('morphing two presets follows the t slider', async ({ page }) => {
   const { rock, grass } = await morphRockToGrass(page);
   expect(core(JSON.parse(await page.evaluate(() => window.proctex.getParams())))).toEqual(core(rock));
   // Drag the t slider's knob to the right end with the mouse.
-  const [x, y, , h] = (await state(page)).widgets['morph.t'];
+  const [x, y, , h] = await reveal(page, 'morph.t');
   await page.mouse.move(x + 3, y + h / 2);
   await page.mouse.down();
   await page.mouse.move(x + 50, y + h / 2, { steps: 4 });

@@ -2,7 +2,7 @@
 // refines every structured model family, the app lists them ranked with thumbnails and scores,
 // adopts the best, and a click adopts another.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, grab, innerSquare, clickWidget, suggestionsFor } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, innerSquare, reveal, clickWidget, suggestionsFor } = require('./helpers');
 
 const patternOf = (json) => {
   const p = JSON.parse(json);
@@ -86,7 +86,7 @@ test("a structured model's sliders change the image", async ({ page }) => {
   expect(s.suggestions[0].name).not.toBe('noise');
   const square = innerSquare(s.widgets.texture, 192);
   const before = await grab(page, square);
-  const [x, y, w, h] = s.widgets['pattern.scale'];
+  const [x, y, w, h] = await reveal(page, 'pattern.scale');
   // Drag the scale slider's knob to the rail's left end (finer pattern).
   const params = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   const scale0 = params.model.pattern.scale;

@@ -65,6 +65,10 @@ test('the tile outline draws the period lattice', async ({ page }) => {
 test('the plots follow the params once an edit settles', async ({ page }) => {
   await openApp(page);
   let s = await state(page);
+  // A click away: the toolbar's Plots opens them over the texture.
+  expect(s.widgets['plot.spectrum']).toBeFalsy();
+  await clickWidget(page, 'plots.toggle');
+  s = await state(page);
   expect(s.widgets['plot.spectrum']).toBeTruthy();
   expect(s.widgets['plot.histograms']).toBeTruthy();
   expect(s.plots_current).toBe(true);

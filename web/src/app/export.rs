@@ -1,4 +1,5 @@
-//! Shader export: Copy / Download WGSL and GLSL of the texture or of a morph.
+//! Export: the strip under the texture (params JSON, share link, shaders, PNG tile) and the
+//! shader buttons it shares with the morph controls (Copy / Download WGSL and GLSL).
 
 use eframe::egui;
 use proctex::params::Params;
@@ -13,6 +14,49 @@ pub fn export_shader(keys: &[Params], format: &str) -> Result<String, String> {
 }
 
 impl ProctexApp {
+    /// The export strip under the texture: everything that takes the current texture out of the
+    /// app (params JSON, share link, WGSL and GLSL shaders, seamless PNG tile), in one place.
+    pub(super) fn export_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal_wrapped(|ui| {
+            ui.label("Export:");
+            let json = self.params.as_ref().map(Params::to_json);
+            let r = ui
+                .add_enabled(json.is_some(), egui::Button::new("Params JSON…").small())
+                .on_hover_text("Download the current params (proctex/1); drop or paste it back");
+            self.record("params.download", &r);
+            if r.clicked()
+                && let Some(j) = &json
+            {
+                host(
+                    "downloadText",
+                    &[
+                        JsValue::from_str("proctex-texture.json"),
+                        JsValue::from_str(j),
+                    ],
+                );
+            }
+            let r = ui
+                .add_enabled(json.is_some(), egui::Button::new("Copy link").small())
+                .on_hover_text("Copy a link that opens this texture (params in the URL fragment)");
+            self.record("params.link", &r);
+            if r.clicked()
+                && let Some(j) = &json
+            {
+                host("copyShareLink", &[JsValue::from_str(j)]);
+                self.status_note = Some("Link copied to the clipboard".into());
+            }
+        });
+        ui.horizontal(|ui| {
+            ui.label("Shader:");
+            let clicked = self.shader_buttons(ui, "export", self.params.is_some(), "this texture");
+            if let (Some((format, ext, copy)), Some(p)) = (clicked, &self.params) {
+                let text = export_shader(std::slice::from_ref(p), ext);
+                self.deliver_shader(format, ext, copy, "proctex-texture", text);
+            }
+        });
+        self.tile_row(ui);
+    }
+
     /// "Copy WGSL", "WGSL…", "Copy GLSL", "GLSL…" buttons (widgets `{prefix}.copy_wgsl`,
     /// `{prefix}.download_wgsl`, ...): the clicked one as (language, extension, copy?).
     pub(super) fn shader_buttons(

@@ -140,6 +140,8 @@ pub struct ProctexApp {
     mode: ViewMode,
     orbit: Orbit,
     period_outline: bool,
+    /// The plots window is open (the toolbar's "Plots").
+    show_plots: bool,
     period_lines: usize,
     flat_shader: bool,
     /// Whether the texture view is rendered only when it changes (see `view_cache`).
@@ -272,6 +274,7 @@ impl ProctexApp {
             mode: ViewMode::Plane,
             orbit: Orbit::default(),
             period_outline: false,
+            show_plots: false,
             period_lines: 0,
             flat_shader: false,
             frame_cache: true,
@@ -348,9 +351,13 @@ impl eframe::App for ProctexApp {
             .default_size(320.0)
             .show(ui, |ui| self.controls(ui));
         egui::Panel::top("toolbar").show(ui, |ui| self.toolbar(ui));
+        egui::Panel::bottom("export").show(ui, |ui| self.export_bar(ui));
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| self.view_panel(ui));
+        if self.show_plots {
+            self.plots_window(&ctx);
+        }
         self.advance_morph(&ctx);
         self.commit_edits(&ctx);
         self.request_stats(&ctx);

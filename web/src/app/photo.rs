@@ -133,9 +133,6 @@ impl ProctexApp {
             ui.label(note.as_str());
         }
         ui.separator();
-        egui::CollapsingHeader::new("Presets and morph")
-            .default_open(true)
-            .show(ui, |ui| self.presets_panel(ui));
         egui::collapsing_header::CollapsingState::load_with_default_open(
             ui.ctx(),
             ui.make_persistent_id("model_suggestions"),
@@ -143,8 +140,8 @@ impl ProctexApp {
         )
         .show_header(ui, |ui| self.refine_budget_control(ui))
         .body(|ui| self.suggestions_panel(ui));
-        egui::CollapsingHeader::new("Plots")
+        egui::CollapsingHeader::new("Presets and morph")
             .default_open(true)
-            .show(ui, |ui| self.plots(ui));
+            .show(ui, |ui| self.presets_panel(ui));
     }
 }

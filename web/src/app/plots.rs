@@ -7,6 +7,21 @@ use wasm_bindgen::JsValue;
 use super::{ProctexApp, host, now_ms};
 
 impl ProctexApp {
+    /// The plots in a window over the texture, while the toolbar's "Plots" is on.
+    pub(super) fn plots_window(&mut self, ctx: &egui::Context) {
+        let mut open = self.show_plots;
+        // First shown at the texture's bottom right, clear of the parameters panel.
+        let corner = ctx.content_rect().right_bottom() - egui::vec2(340.0, 60.0);
+        egui::Window::new("Plots")
+            .open(&mut open)
+            .default_width(340.0)
+            .pivot(egui::Align2::RIGHT_BOTTOM)
+            .default_pos(corner)
+            .resizable(false)
+            .show(ctx, |ui| self.plots(ui));
+        self.show_plots = open;
+    }
+
     /// The radially averaged power spectrum and the RGB histograms, photo against model. The
     /// model's statistics are recomputed by the worker once edits pause.
     pub(super) fn plots(&mut self, ui: &mut egui::Ui) {

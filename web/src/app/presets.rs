@@ -2,12 +2,11 @@
 //! delete, import, export) and their storage in the browser.
 
 use eframe::egui;
-use proctex::params::Params;
 use wasm_bindgen::JsValue;
 
 use crate::presets::{Preset, STORAGE_KEY, library_json, parse_library};
 
-use super::{ProctexApp, export_shader, host};
+use super::{ProctexApp, host};
 
 impl ProctexApp {
     /// Loads the presets from `localStorage`. An unreadable stored library is moved aside to a
@@ -93,43 +92,6 @@ impl ProctexApp {
                 self.persist_presets();
             }
         });
-        ui.horizontal(|ui| {
-            let json = self.params.as_ref().map(Params::to_json);
-            let r = ui
-                .add_enabled(json.is_some(), egui::Button::new("Params JSON…").small())
-                .on_hover_text("Download the current params (proctex/1); drop or paste it back");
-            self.record("params.download", &r);
-            if r.clicked()
-                && let Some(j) = &json
-            {
-                host(
-                    "downloadText",
-                    &[
-                        JsValue::from_str("proctex-texture.json"),
-                        JsValue::from_str(j),
-                    ],
-                );
-            }
-            let r = ui
-                .add_enabled(json.is_some(), egui::Button::new("Copy link").small())
-                .on_hover_text("Copy a link that opens this texture (params in the URL fragment)");
-            self.record("params.link", &r);
-            if r.clicked()
-                && let Some(j) = &json
-            {
-                host("copyShareLink", &[JsValue::from_str(j)]);
-                self.status_note = Some("Link copied to the clipboard".into());
-            }
-        });
-        ui.horizontal(|ui| {
-            ui.label("Shader:");
-            let clicked = self.shader_buttons(ui, "export", self.params.is_some(), "this texture");
-            if let (Some((format, ext, copy)), Some(p)) = (clicked, &self.params) {
-                let text = export_shader(std::slice::from_ref(p), ext);
-                self.deliver_shader(format, ext, copy, "proctex-texture", text);
-            }
-        });
-        self.tile_row(ui);
         ui.horizontal(|ui| {
             let r = ui.small_button("Export…");
             self.record("presets.export", &r);

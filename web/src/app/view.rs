@@ -77,6 +77,14 @@ impl ProctexApp {
                 .checkbox(&mut self.period_outline, "tile outline")
                 .on_hover_text("Outline the tile period: the texture repeats seamlessly across it");
             self.record("period", &r);
+            ui.separator();
+            let r = ui
+                .selectable_label(self.show_plots, "Plots")
+                .on_hover_text("The photo's power spectrum and histograms against the model's");
+            self.record("plots.toggle", &r);
+            if r.clicked() {
+                self.show_plots = !self.show_plots;
+            }
         });
     }
 
