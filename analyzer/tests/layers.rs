@@ -1,6 +1,6 @@
 //! The analyzer's layers: `src/lib.rs` declares its modules in layers (a `// Layer:` comment
 //! starts each), lowest first. This test reads those declarations and every module's source
-//! (its file and its folder, without its `#[cfg(test)]` tests), collects the `crate::<module>`
+//! (its file and its folder, without its `#[cfg(test)]` tests, inline or in a `tests.rs`), collects the `crate::<module>`
 //! paths each one uses, and checks that
 //! - every module uses only modules of its own layer or of lower ones, and
 //! - no module reaches itself through the others (no import cycle, inside a layer either).
@@ -29,7 +29,8 @@ fn layers(src: &Path) -> BTreeMap<String, usize> {
     out
 }
 
-/// The `.rs` files of module `name`: `src/name.rs` and everything under `src/name/`.
+/// The `.rs` files of module `name`: `src/name.rs` and everything under `src/name/` but its
+/// unit tests (`tests.rs`).
 fn files_of(src: &Path, name: &str) -> Vec<PathBuf> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
         let Ok(entries) = std::fs::read_dir(dir) else {
@@ -39,7 +40,9 @@ fn files_of(src: &Path, name: &str) -> Vec<PathBuf> {
             let p = e.path();
             if p.is_dir() {
                 walk(&p, out);
-            } else if p.extension().is_some_and(|x| x == "rs") {
+            } else if p.extension().is_some_and(|x| x == "rs")
+                && p.file_name().is_some_and(|n| n != "tests.rs")
+            {
                 out.push(p);
             }
         }
