@@ -19,13 +19,14 @@ impl ProctexApp {
     pub(super) fn export_bar(&mut self, ui: &mut egui::Ui) {
         ui.horizontal_wrapped(|ui| {
             ui.label("Export:");
-            let json = self.params.as_ref().map(Params::to_json);
+            // Serialised on a click only: the strip is drawn every frame.
+            let has_params = self.params.is_some();
             let r = ui
-                .add_enabled(json.is_some(), egui::Button::new("Params JSON…").small())
+                .add_enabled(has_params, egui::Button::new("Params JSON…").small())
                 .on_hover_text("Download the current params (proctex/1); drop or paste it back");
             self.record("params.download", &r);
             if r.clicked()
-                && let Some(j) = &json
+                && let Some(j) = &self.params.as_ref().map(Params::to_json)
             {
                 host(
                     "downloadText",
@@ -36,11 +37,11 @@ impl ProctexApp {
                 );
             }
             let r = ui
-                .add_enabled(json.is_some(), egui::Button::new("Copy link").small())
+                .add_enabled(has_params, egui::Button::new("Copy link").small())
                 .on_hover_text("Copy a link that opens this texture (params in the URL fragment)");
             self.record("params.link", &r);
             if r.clicked()
-                && let Some(j) = &json
+                && let Some(j) = &self.params.as_ref().map(Params::to_json)
             {
                 host("copyShareLink", &[JsValue::from_str(j)]);
                 self.status_note = Some("Link copied to the clipboard".into());
