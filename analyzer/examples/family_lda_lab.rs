@@ -105,7 +105,6 @@ fn augment(s: &[f32], n: usize, scale: f32, u: &dyn Fn(u32) -> f32) -> Vec<f32> 
         .collect()
 }
 
-
 /// Descriptors of `per_kind` database patterns per family, each clean and `augmented` times
 /// photo-like (the retrieval lab's augmentation), with their class.
 fn augmented_set(per_kind: usize, augmented: usize) -> Vec<(Descriptor, usize)> {
@@ -150,7 +149,12 @@ fn load(dir: &str) -> Vec<Patch> {
         let (hw, hh) = (photo.width / 2, photo.height / 2);
         for (qx, qy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
             let p = photo
-                .crop(Crop { x: qx * hw, y: qy * hh, w: hw, h: hh })
+                .crop(Crop {
+                    x: qx * hw,
+                    y: qy * hh,
+                    w: hw,
+                    h: hh,
+                })
                 .unwrap();
             let map = two_tone(&p).structure;
             let (q, _) = query(&map, p.width as usize, p.height as usize);
@@ -204,7 +208,11 @@ fn cholesky(a: &[f64], n: usize) -> Vec<f64> {
             for k in 0..j {
                 s -= l[i * n + k] * l[j * n + k];
             }
-            l[i * n + j] = if i == j { s.max(1e-12).sqrt() } else { s / l[j * n + j] };
+            l[i * n + j] = if i == j {
+                s.max(1e-12).sqrt()
+            } else {
+                s / l[j * n + j]
+            };
         }
     }
     l
@@ -283,7 +291,9 @@ struct Model {
 }
 
 fn project(m: &[Vec<f64>], x: &[f64]) -> Vec<f64> {
-    m.iter().map(|r| r.iter().zip(x).map(|(a, b)| a * b).sum()).collect()
+    m.iter()
+        .map(|r| r.iter().zip(x).map(|(a, b)| a * b).sum())
+        .collect()
 }
 
 fn fit(xs: &[(Vec<f64>, usize)], classes: usize, ridge: f64, dims: usize) -> Model {
@@ -368,7 +378,11 @@ fn fit(xs: &[(Vec<f64>, usize)], classes: usize, ridge: f64, dims: usize) -> Mod
         .collect();
     let means = mean.iter().map(|m| project(&proj, m)).collect();
     let points = xs.iter().map(|(x, c)| (project(&proj, x), *c)).collect();
-    Model { proj, means, points }
+    Model {
+        proj,
+        means,
+        points,
+    }
 }
 
 fn d2(a: &[f64], b: &[f64]) -> f64 {
@@ -391,7 +405,9 @@ fn scores(m: &Model, y: &[f64], classes: usize, knn: usize) -> Vec<f64> {
     for (d, c) in &ds {
         nearest[*c] = nearest[*c].min(*d);
     }
-    (0..classes).map(|c| -votes[c] + nearest[c] * 1e-6).collect()
+    (0..classes)
+        .map(|c| -votes[c] + nearest[c] * 1e-6)
+        .collect()
 }
 
 fn main() {
@@ -405,7 +421,10 @@ fn main() {
             .iter()
             .step_by(2)
             .map(|e| {
-                let c = PatternKind::ALL.iter().position(|k| *k == e.pattern.kind).unwrap();
+                let c = PatternKind::ALL
+                    .iter()
+                    .position(|k| *k == e.pattern.kind)
+                    .unwrap();
                 (e.descriptor.clone(), c)
             })
             .collect()
@@ -432,7 +451,12 @@ fn main() {
                 let (mut noiselike, mut stoch) = (0, 0);
                 let mut confusion = std::collections::BTreeMap::<(String, String), usize>::new();
                 for p in &patches {
-                    let a = scores(&model, &project(&model.proj, &features(&p.q, harmonics)), classes, knn);
+                    let a = scores(
+                        &model,
+                        &project(&model.proj, &features(&p.q, harmonics)),
+                        classes,
+                        knn,
+                    );
                     let b = scores(
                         &model,
                         &project(&model.proj, &features(&p.q.swapped(), harmonics)),
