@@ -13,12 +13,9 @@ use crate::error::{Error, Result};
 
 /// Smallest accepted side (after crop).
 pub const MIN_SIDE: u32 = 32;
-/// Largest accepted side of a decoded image.
-pub const MAX_SIDE: u32 = 16_384;
-/// Largest decoder allocation (bytes).
-pub const MAX_ALLOC: u64 = 1 << 29;
-/// Most pixels a photo may have (50 MP: 600 MB as f32 RGB; a 12 MP phone photo is 144 MB).
-pub const MAX_PIXELS: u64 = 50_000_000;
+pub use crate::limits::{MAX_PIXELS, MAX_SIDE};
+/// Bytes the decoder may allocate per allowed pixel (RGBA at 16 bits, the widest layout).
+const ALLOC_PER_PIXEL: u64 = 8;
 
 /// An RGB image with `f32` channels in `[0, 1]`, row-major, top row first.
 #[derive(Clone, Debug, PartialEq)]
@@ -73,8 +70,8 @@ fn decode_error(e: image::ImageError) -> Error {
     use image::ImageError as E;
     match e {
         E::Limits(l) => Error::TooLarge(format!(
-            "{l} (at most {MAX_SIDE} pixels a side and {} MiB of pixels)",
-            MAX_ALLOC >> 20
+            "{l} (at most {MAX_SIDE} pixels a side; {})",
+            crate::limits::PAST_THE_LIMIT
         )),
         E::Unsupported(u) => Error::Decode(format!("unsupported image: {u}")),
         E::Decoding(d) => Error::Decode(format!("the file is corrupt or truncated ({d})")),
@@ -87,8 +84,21 @@ impl Photo {
     /// Decodes PNG, JPEG, WebP, GIF (first frame), BMP or TIFF bytes, 8 or 16 bit, grey, grey +
     /// alpha, RGB or RGBA (alpha ignored), applying the EXIF orientation where there is one.
     pub fn decode(bytes: &[u8]) -> Result<Photo> {
+        Photo::decode_limited(bytes, MAX_PIXELS)
+    }
+
+    #[cfg(feature = "decode")]
+    /// [`Photo::decode`] with a pixel limit other than [`MAX_PIXELS`], checked from the header
+    /// before any pixel is decoded.
+    pub fn decode_limited(bytes: &[u8], max_pixels: u64) -> Result<Photo> {
+        crate::limits::check_file_bytes(bytes.len() as u64)?;
         if bytes.is_empty() {
             return Err(Error::Decode("the file is empty".into()));
+        }
+        // The header's own dimensions first: the decoder's limit error says neither the size nor
+        // the limit.
+        if let Some((w, h)) = crate::image_header::read(bytes).and_then(|h| h.size) {
+            crate::limits::check_pixels("the photo", w, h, max_pixels)?;
         }
         // The decoders are fuzzed upstream, but a panic on hostile bytes must still become an
         // error here rather than a crash of the CLI or a dead browser tab.
@@ -109,16 +119,11 @@ impl Photo {
             let mut limits = Limits::default();
             limits.max_image_width = Some(MAX_SIDE);
             limits.max_image_height = Some(MAX_SIDE);
-            limits.max_alloc = Some(MAX_ALLOC);
+            limits.max_alloc = Some(max_pixels.saturating_mul(ALLOC_PER_PIXEL).max(1 << 26));
             reader.limits(limits);
             let mut decoder = reader.into_decoder().map_err(decode_error)?;
             let (w, h) = decoder.dimensions();
-            if w as u64 * h as u64 > MAX_PIXELS {
-                return Err(Error::TooLarge(format!(
-                    "{w}×{h} is over {} megapixels",
-                    MAX_PIXELS / 1_000_000
-                )));
-            }
+            crate::limits::check_pixels("the photo", w as u64, h as u64, max_pixels)?;
             let orientation = decoder.orientation().map_err(decode_error)?;
             let mut img = DynamicImage::from_decoder(decoder).map_err(decode_error)?;
             img.apply_orientation(orientation);

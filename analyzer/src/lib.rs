@@ -14,7 +14,10 @@
 pub mod colour;
 pub mod error;
 pub mod histogram;
+pub mod image_header;
 pub mod input;
+pub mod json;
+pub mod limits;
 pub mod parallel;
 pub mod radix;
 pub mod rng;

@@ -284,18 +284,23 @@ impl Params {
 
     /// Parses and validates a params document.
     pub fn from_json(text: &str) -> Result<Params> {
-        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
-            Error::params(
-                "(document)",
-                format!("not valid JSON: {e} (NaN and Infinity are not JSON numbers)"),
-            )
+        let value = crate::json::parse(text).map_err(|e| {
+            let hint = if text.contains("NaN") || text.contains("Infinity") {
+                " (NaN and Infinity are not JSON numbers)"
+            } else {
+                ""
+            };
+            Error::params("(document)", format!("not valid JSON: {e}{hint}"))
         })?;
         match value.get("format") {
             Some(serde_json::Value::String(f)) if f == FORMAT => {}
             Some(serde_json::Value::String(f)) => {
                 return Err(Error::params(
                     "format",
-                    format!("unsupported format `{f}`; this version reads `{FORMAT}`"),
+                    format!(
+                        "unsupported format `{}`; this version reads `{FORMAT}`",
+                        crate::limits::quote(f)
+                    ),
                 ));
             }
             Some(_) => return Err(Error::params("format", "must be a string")),
@@ -308,7 +313,10 @@ impl Params {
         }
         let mut params: Params = serde_path_to_error::deserialize(value).map_err(|e| {
             let path = e.path().to_string();
-            Error::params(path, e.into_inner().to_string())
+            Error::params(
+                crate::limits::quote(&path),
+                crate::limits::bounded_message(&e.into_inner().to_string()),
+            )
         })?;
         if let Model::Structured(m) = &mut params.model {
             // Ranges narrowed since (see `pattern`'s module docs): old presets still load.

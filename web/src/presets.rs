@@ -57,8 +57,8 @@ pub fn library_json(presets: &[Preset]) -> String {
 
 /// Parses and validates a library file. The error names the preset and field that is wrong.
 pub fn parse_library(text: &str) -> Result<Vec<Preset>, String> {
-    let value: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| format!("not a presets file: not JSON ({e})"))?;
+    let value =
+        proctex::json::parse(text).map_err(|e| format!("not a presets file: not JSON ({e})"))?;
     match value.get("format").and_then(|f| f.as_str()) {
         Some(LIBRARY_FORMAT) => {}
         // A single params document is welcome too: it becomes one preset.

@@ -12,7 +12,10 @@ use proctex::evaluate::{fidelity, fidelity_observed, ratio_difference};
 use proctex::retrieve::{ModelChoice, Refinement};
 use proctex::{Error, Result};
 
-use super::{Args, analysis_flag, load_photo, model_choice, read, refinement_of, usage};
+use super::args::{Args, usage};
+use super::files::{load_photo, read};
+use super::{analysis_flag, model_choice, refinement_of};
+use proctex::limits;
 
 const FIDELITY_HELP: &str = "\
 proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--json] [analyze OPTIONS]
@@ -106,7 +109,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
         );
     }
     for f in &files {
-        let photo = load_photo(f)?;
+        let photo = load_photo(f, a.photo_pixels())?;
         let r = fidelity(&photo, &o, model, refinement, &seeds)?;
         let diff = match against {
             Some(m) => {
@@ -202,7 +205,7 @@ fn dev_set(
     let mut results = Vec::new();
     let mut sides = Vec::new();
     for entry in entries {
-        let photo = load_photo(&dir.join(&entry.file).to_string_lossy())?;
+        let photo = load_photo(&dir.join(&entry.file).to_string_lossy(), limits::MAX_PIXELS)?;
         sides.push(photo.width.min(photo.height) / 2);
         let r = PhotoResult::measure(
             entry,

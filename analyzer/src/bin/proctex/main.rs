@@ -1,16 +1,21 @@
 //! `proctex`: the command-line face of the analyzer. Exit codes: 0 success, 1 bad input or a
 //! failed operation (the message says which), 2 bad usage.
 
+mod args;
 mod fidelity;
+mod files;
 
 use std::process::ExitCode;
 use std::time::Instant;
 
+use args::{Args, parse_option, take_max_pixels, usage};
+use files::{load_photo, read};
 use proctex::analyze::Options;
 use proctex::db::Db;
 use proctex::distance::distances;
 use proctex::evaluate::synthesize_model_progress;
 use proctex::input::{Crop, Photo};
+use proctex::limits::{self, quote};
 use proctex::params::Params;
 use proctex::render::{Image, View, period_texels, render};
 use proctex::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model_progress};
@@ -33,6 +38,12 @@ COMMANDS:
     export    params JSON → params JSON, or a complete WGSL or GLSL shader of the texture or a morph
     build-db  the retrieval database of the structured models (analyzer/data/patterns.ptxdb)
     help      this text; `proctex <COMMAND> --help` for a command
+
+OPTIONS FOR EVERY COMMAND:
+    --max-pixels N   the most pixels a photo or a render may have (default: 50 MP for a photo,
+                     8192×8192 for a render; a side is at most 16384 either way)
+
+Files over 256 MiB are refused unread.
 
 Exit codes: 0 success, 1 bad input or failed operation, 2 bad usage.";
 
@@ -128,40 +139,6 @@ display fragment shader as-is, and the vertex shader and bake passes by one #def
 
 Two or more params files (wgsl, glsl): the morph through them, as `proctex morph`, with t as a
 uniform: proctex(p, pixel_size, t) rebuilds the params of t from every file's constants.";
-
-/// Minimal argument cursor: positional arguments and `--flag [value]` options.
-struct Args {
-    items: Vec<String>,
-    pos: usize,
-}
-
-fn usage(msg: impl Into<String>) -> Error {
-    Error::Option(msg.into())
-}
-
-impl Args {
-    fn next(&mut self) -> Option<String> {
-        let v = self.items.get(self.pos).cloned();
-        self.pos += 1;
-        v
-    }
-    fn value(&mut self, flag: &str) -> Result<String> {
-        self.next()
-            .ok_or_else(|| usage(format!("{flag} needs a value")))
-    }
-    fn parsed<T: std::str::FromStr>(&mut self, flag: &str) -> Result<T> {
-        let v = self.value(flag)?;
-        v.parse()
-            .map_err(|_| usage(format!("{flag}: `{v}` is not a valid value")))
-    }
-}
-
-fn read(path: &str) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|e| Error::Io {
-        path: path.into(),
-        message: e.to_string(),
-    })
-}
 
 fn write_png(path: &str, img: &Image, depth16: bool) -> Result<()> {
     let io = |e: image::ImageError| Error::Io {
@@ -283,7 +260,9 @@ fn cmd_export(mut a: Args) -> Result<()> {
             }
             "--format" => format = Some(a.value(&arg)?),
             "-o" | "--output" => out = Some(a.value(&arg)?),
-            f if f.starts_with('-') => return Err(usage(format!("export: unknown option {f}"))),
+            f if f.starts_with('-') => {
+                return Err(usage(format!("export: unknown option {}", quote(f))));
+            }
             _ => files.push(arg),
         }
     }
@@ -365,7 +344,9 @@ fn cmd_morph(mut a: Args) -> Result<()> {
             }
             "--t" => t = Some(a.parsed::<f32>(&arg)?),
             "-o" | "--output" => out = Some(a.value(&arg)?),
-            f if f.starts_with('-') => return Err(usage(format!("morph: unknown option {f}"))),
+            f if f.starts_with('-') => {
+                return Err(usage(format!("morph: unknown option {}", quote(f))));
+            }
             _ => files.push(arg),
         }
     }
@@ -521,15 +502,23 @@ fn cmd_analyze(mut a: Args) -> Result<()> {
             "--refine" => refinement = refinement_of(a.parsed(&arg)?),
             "--refine-seconds" => seconds = refine_seconds(&mut a, &arg)?,
             f if analysis_flag(f, &mut a, &mut o)? => {}
-            f if f.starts_with('-') => return Err(usage(format!("analyze: unknown option {f}"))),
+            f if f.starts_with('-') => {
+                return Err(usage(format!("analyze: unknown option {}", quote(f))));
+            }
             _ if photo.is_none() => photo = Some(arg),
-            _ => return Err(usage(format!("analyze: unexpected argument `{arg}`"))),
+            _ => {
+                return Err(usage(format!(
+                    "analyze: unexpected argument `{}`",
+                    quote(&arg)
+                )));
+            }
         }
     }
     let photo = photo.ok_or_else(|| usage("analyze: which photo? (proctex analyze PHOTO)"))?;
     let bytes = read(&photo)?;
     let t = Instant::now();
-    let photo = Photo::decode(&bytes)?;
+    let photo =
+        Photo::decode_limited(&bytes, a.photo_pixels()).map_err(|e| files::naming(&photo, e))?;
     let budget = TimeBudget::new(seconds);
     let (analysis, suggestions) =
         analyze_photo_model_progress(&photo, &o, model, refinement, &|d, n| budget.progress(d, n))?;
@@ -581,9 +570,15 @@ fn cmd_render(mut a: Args) -> Result<()> {
             "--pixel-size" => view.pixel_size = a.parsed(&arg)?,
             "--origin" => {
                 let v = a.value(&arg)?;
-                let xy: Vec<f32> = v.split(',').filter_map(|s| s.trim().parse().ok()).collect();
+                let xy = v
+                    .split(',')
+                    .map(|s| parse_option::<f32>(&arg, s))
+                    .collect::<Result<Vec<f32>>>()?;
                 if xy.len() != 2 {
-                    return Err(usage(format!("--origin: expected X,Y, got `{v}`")));
+                    return Err(usage(format!(
+                        "--origin: expected X,Y, got `{}`",
+                        quote(&v)
+                    )));
                 }
                 view.origin = [xy[0], xy[1]];
             }
@@ -597,9 +592,16 @@ fn cmd_render(mut a: Args) -> Result<()> {
                     d => return Err(usage(format!("--depth: `{d}` is not 8 or 16"))),
                 }
             }
-            f if f.starts_with('-') => return Err(usage(format!("render: unknown option {f}"))),
+            f if f.starts_with('-') => {
+                return Err(usage(format!("render: unknown option {}", quote(f))));
+            }
             _ if params_path.is_none() => params_path = Some(arg),
-            _ => return Err(usage(format!("render: unexpected argument `{arg}`"))),
+            _ => {
+                return Err(usage(format!(
+                    "render: unexpected argument `{}`",
+                    quote(&arg)
+                )));
+            }
         }
     }
     let params_path =
@@ -615,11 +617,12 @@ fn cmd_render(mut a: Args) -> Result<()> {
         })
         .unwrap_or((512, 512));
     let (w, h) = (width.unwrap_or(dw), height.unwrap_or(dh));
-    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+    if w == 0 || h == 0 {
         return Err(usage(format!(
-            "image size {w}×{h} must be 1..=16384 a side"
+            "image size {w}×{h}: a side must be at least 1"
         )));
     }
+    limits::check_pixels("the render", w as u64, h as u64, a.render_pixels())?;
     if !(view.pixel_size.is_finite() && view.pixel_size > 0.0) {
         return Err(usage("--pixel-size must be a positive number"));
     }
@@ -686,14 +689,21 @@ fn cmd_synth(mut a: Args) -> Result<()> {
             "--refine" => refinement = refinement_of(a.parsed(&arg)?),
             "--refine-seconds" => seconds = refine_seconds(&mut a, &arg)?,
             f if analysis_flag(f, &mut a, &mut o)? => {}
-            f if f.starts_with('-') => return Err(usage(format!("synth: unknown option {f}"))),
+            f if f.starts_with('-') => {
+                return Err(usage(format!("synth: unknown option {}", quote(f))));
+            }
             _ if photo.is_none() => photo = Some(arg),
-            _ => return Err(usage(format!("synth: unexpected argument `{arg}`"))),
+            _ => {
+                return Err(usage(format!(
+                    "synth: unexpected argument `{}`",
+                    quote(&arg)
+                )));
+            }
         }
     }
     let photo = photo.ok_or_else(|| usage("synth: which photo? (proctex synth PHOTO -o OUT)"))?;
     let out = out.ok_or_else(|| usage("synth: -o OUT.png is required"))?;
-    let decoded = Photo::decode(&read(&photo)?)?;
+    let decoded = load_photo(&photo, a.photo_pixels())?;
     let region = match o.crop {
         Some(c) => decoded.crop(c)?,
         None => decoded,
@@ -719,13 +729,6 @@ fn cmd_synth(mut a: Args) -> Result<()> {
     Ok(())
 }
 
-fn load_photo(path: &str) -> Result<Photo> {
-    Photo::decode(&read(path)?).map_err(|e| match e {
-        Error::Decode(m) => Error::Decode(format!("{path}: {m}")),
-        other => other,
-    })
-}
-
 fn cmd_evaluate(mut a: Args) -> Result<()> {
     let mut files = Vec::new();
     let mut json = false;
@@ -736,7 +739,9 @@ fn cmd_evaluate(mut a: Args) -> Result<()> {
                 return Ok(());
             }
             "--json" => json = true,
-            f if f.starts_with('-') => return Err(usage(format!("evaluate: unknown option {f}"))),
+            f if f.starts_with('-') => {
+                return Err(usage(format!("evaluate: unknown option {}", quote(f))));
+            }
             _ => files.push(arg),
         }
     }
@@ -745,7 +750,10 @@ fn cmd_evaluate(mut a: Args) -> Result<()> {
             "evaluate: needs exactly two images (proctex evaluate A B)",
         ));
     }
-    let (pa, pb) = (load_photo(&files[0])?, load_photo(&files[1])?);
+    let (pa, pb) = (
+        load_photo(&files[0], a.photo_pixels())?,
+        load_photo(&files[1], a.photo_pixels())?,
+    );
     let d = distances(&pa, &pb);
     if json {
         println!("{}", serde_json::to_string(&d).expect("serialisable"));
@@ -760,12 +768,23 @@ fn cmd_evaluate(mut a: Args) -> Result<()> {
 
 fn main() -> ExitCode {
     let mut items: Vec<String> = std::env::args().skip(1).collect();
+    let max_pixels = match take_max_pixels(&mut items) {
+        Ok(m) => m,
+        Err(e) => {
+            eprintln!("proctex: {}", limits::bounded_message(&e.to_string()));
+            return ExitCode::from(2);
+        }
+    };
     if items.is_empty() {
         eprintln!("{MAIN_HELP}");
         return ExitCode::from(2);
     }
     let cmd = items.remove(0);
-    let args = Args { items, pos: 0 };
+    let args = Args {
+        items,
+        pos: 0,
+        max_pixels,
+    };
     let result = match cmd.as_str() {
         "analyze" => cmd_analyze(args),
         "render" => cmd_render(args),
@@ -780,17 +799,18 @@ fn main() -> ExitCode {
             Ok(())
         }
         other => Err(usage(format!(
-            "unknown command `{other}`; run `proctex help`"
+            "unknown command `{}`; run `proctex help`",
+            quote(other)
         ))),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e @ Error::Option(_)) => {
-            eprintln!("proctex: {e}");
+            eprintln!("proctex: {}", limits::bounded_message(&e.to_string()));
             ExitCode::from(2)
         }
         Err(e) => {
-            eprintln!("proctex: {e}");
+            eprintln!("proctex: {}", limits::bounded_message(&e.to_string()));
             ExitCode::from(1)
         }
     }
