@@ -2,6 +2,7 @@
 // (drop, Open…, paste, camera), and exposes the automation API on window.proctex (see
 // README.md in this folder).
 import init, * as wasm from './pkg/proctex_web.js';
+import { startFallback } from './fallback.js';
 
 const SAMPLES = [
   'stk_rock_mountain_512.png',
@@ -69,6 +70,7 @@ function job(msg, transfer = []) {
 let appRunning = false;
 function reportError(text) {
   if (appRunning) wasm.reportError(text);
+  else if (fallback) fallback.showError(text);
   else show(text, true);
 }
 
@@ -88,6 +90,8 @@ async function analysePhoto(msg, transfer, name) {
   if (appRunning) {
     wasm.analysisDone(m.report, m.name, m.ms, m.preview, m.pw, m.ph, m.width, m.height);
     if (m.suggest === false) wasm.suggestionsOnRequest();
+  } else if (fallback) {
+    await showCpuResult(m.name, m.ms);
   }
   lastTimings = { ms: m.ms, decodeMs: m.decodeMs };
   return true;
@@ -165,6 +169,10 @@ const isJson = (file) => file.type === 'application/json' || /\.json$/i.test(fil
 // JSON text from a file, a drop or a paste: a params document replaces the params, a presets
 // library adds its presets; anything else is reported.
 function importJson(text, what) {
+  if (!appRunning) {
+    reportError(`${what}: params and presets files open in the full app, which needs WebGPU`);
+    return false;
+  }
   let doc;
   try { doc = JSON.parse(text); } catch (e) {
     wasm.reportError(`${what}: not JSON (${e.message})`);
@@ -178,6 +186,23 @@ function importJson(text, what) {
     return true;
   }
   wasm.importPresets(text); // a library, or an error message naming what is wrong
+  return true;
+}
+
+// A share link opens a texture and nothing else: a presets library in a link is refused, so
+// that following a link never writes to the user's presets.
+function openLinkParams(text) {
+  let doc = null;
+  try { doc = JSON.parse(text); } catch (e) { /* reported below */ }
+  if (!doc || doc.format !== 'proctex/1') {
+    wasm.reportError('This link does not hold a texture (#p=…): links open a texture\'s params ' +
+      'only; a presets library is opened with Import… in the presets panel.');
+    return false;
+  }
+  try { wasm.setParams(text); } catch (e) {
+    wasm.reportError(`the link: ${e}`);
+    return false;
+  }
   return true;
 }
 
@@ -197,8 +222,19 @@ function paramsFromFragment() {
   return new TextDecoder().decode(Uint8Array.from(bin, (c) => c.charCodeAt(0)));
 }
 
+// The most bytes the page reads from one file: the analyzer's limit (limits::MAX_FILE_BYTES),
+// checked before reading so that a huge file costs no memory.
+const MAX_FILE_BYTES = 256 * 1024 * 1024;
+function tooBig(file) {
+  if (file.size <= MAX_FILE_BYTES) return false;
+  reportError(`${file.name || 'the file'}: more than 256 MiB; no photo or params file ` +
+    'needs that many (a photo converts to PNG or JPEG)');
+  return true;
+}
+
 // An image is analysed; a .json file (params or a presets library) is imported.
 async function loadFile(file) {
+  if (tooBig(file)) return false;
   if (isJson(file)) return importJson(await file.text(), file.name);
   const bytes = new Uint8Array(await file.arrayBuffer());
   return loadImage(bytes, file.name || 'pasted image');
@@ -211,7 +247,7 @@ presetInput.style.display = 'none';
 document.body.appendChild(presetInput);
 presetInput.addEventListener('change', async () => {
   const f = presetInput.files && presetInput.files[0];
-  if (f) wasm.importPresets(await f.text());
+  if (f && !tooBig(f)) wasm.importPresets(await f.text());
   presetInput.value = '';
 });
 
@@ -236,6 +272,10 @@ fileInput.addEventListener('change', () => {
 });
 
 function installPhotoInputs() {
+  // Another tab saved presets: the app shows its library (see web/src/preset_store.rs).
+  window.addEventListener('storage', (e) => {
+    if (e.key === 'proctex.presets' || e.key === null) wasm.presetsChangedElsewhere();
+  });
   // Capture phase: eframe's own canvas handlers would otherwise take the drop (and hand
   // egui the raw bytes, which the app would decode on the UI thread).
   document.addEventListener('dragover', (e) => {
@@ -245,7 +285,7 @@ function installPhotoInputs() {
     e.preventDefault(); e.stopPropagation();
     const file = imageFileOf(e.dataTransfer && e.dataTransfer.files);
     if (file) loadFile(file);
-    else wasm.reportError('Nothing to open: drop an image file.');
+    else reportError('Nothing to open: drop an image file.');
   }, true);
   document.addEventListener('paste', (e) => {
     const file = imageFileOf(e.clipboardData && e.clipboardData.items);
@@ -267,7 +307,7 @@ function closeCamera() {
 }
 async function openCamera() {
   if (!navigator.mediaDevices || !navigator.mediaDevices.getUserMedia) {
-    wasm.reportError('Camera: this browser gives the page no camera access ' +
+    reportError('Camera: this browser gives the page no camera access ' +
       '(it needs a secure context: https or localhost).');
     return;
   }
@@ -281,7 +321,7 @@ async function openCamera() {
       NotFoundError: 'no camera was found',
       NotReadableError: 'the camera is in use by another program',
     }[e.name] || e.message || String(e);
-    wasm.reportError(`Camera: ${why}.`);
+    reportError(`Camera: ${why}.`);
     return;
   }
   video.srcObject = stream;
@@ -290,7 +330,7 @@ async function openCamera() {
 }
 async function capture() {
   if (!stream || video.videoWidth === 0) {
-    wasm.reportError('Camera: no frame yet; wait for the preview and try again.');
+    reportError('Camera: no frame yet; wait for the preview and try again.');
     return false;
   }
   const w = video.videoWidth, h = video.videoHeight;
@@ -463,40 +503,52 @@ window.proctex = {
   setRefineHelpers: (n, script) => worker.postMessage({ type: 'setHelpers', n, script }),
 };
 
-// Without WebGPU: say so, and show the CPU reference render of the sample's analysis instead
-// of a blank canvas.
-async function cpuFallback(reason) {
-  show(`${reason}\nProctex renders textures with WebGPU. Use a current Chrome or Edge, ` +
-    'Safari 26+, or Firefox with WebGPU enabled.\nBelow: the CPU reference rendering of the ' +
-    `sample (${DEFAULT_SAMPLE}), analysed in this page.`, true);
+// Without WebGPU: say so in plain words, and keep the inputs working: every photo opened,
+// dropped or pasted is analysed in the worker and shown as its CPU reference render, with the
+// plots and the exports that need no GPU (www/fallback.js).
+let fallback = null;
+async function cpuFallback(notice) {
   document.getElementById('proctex_canvas').style.display = 'none';
-  const ok = await loadStartupSample();
-  if (!ok) return;
-  const params = JSON.stringify(JSON.parse(lastReport).params);
-  const size = 384;
-  const [, reply] = job({ type: 'preview', params, width: size, height: size });
-  const m = await reply;
-  if (m.type !== 'preview') { show(m.message, true); return; }
-  const canvas = document.getElementById('cpu_preview');
-  canvas.width = size; canvas.height = size;
-  canvas.getContext('2d').putImageData(
-    new ImageData(new Uint8ClampedArray(m.rgba.buffer), size, size), 0, 0);
-  canvas.hidden = false;
-  window.proctex.cpuPreview = { width: size, height: size, ms: m.ms };
+  fallback = startFallback(notice, {
+    openFile: () => fileInput.click(),
+    download: downloadText,
+    exportShader: (params, format) => wasm.exportShader(params, format),
+  });
+  installPhotoInputs();
+  await loadStartupSample();
   window.proctex.ready = true;
 }
 
+// The CPU preview of the last analysis, in the fallback panel.
+async function showCpuResult(name, ms) {
+  const size = 384;
+  const params = JSON.stringify(JSON.parse(lastReport).params);
+  const [, reply] = job({ type: 'preview', params, width: size, height: size });
+  const m = await reply;
+  if (m.type !== 'preview') { fallback.showError(m.message); return; }
+  fallback.showResult(name, ms, lastReport, m.rgba, size);
+  window.proctex.cpuPreview = { width: size, height: size, ms: m.ms, photo: name };
+}
+
 async function main() {
+  // Offline after one visit (sw.js). Service workers exist only on https and localhost.
+  if ('serviceWorker' in navigator) navigator.serviceWorker.register('sw.js').catch(() => {});
   await init();
+  const howTo = 'Proctex draws its textures live with WebGPU: use a current Chrome or Edge, ' +
+    'Safari 26 or later, or Firefox with WebGPU turned on. Until then this page still analyses ' +
+    'your photos (open, drop or paste one) and shows each result drawn on the CPU, with its ' +
+    'plots and exports.';
   if (!navigator.gpu) {
-    await cpuFallback('This browser has no WebGPU.');
+    await cpuFallback(`This browser has no WebGPU. ${howTo}`);
     return;
   }
   let handle;
   try {
     handle = await wasm.start(document.getElementById('proctex_canvas'));
   } catch (e) {
-    await cpuFallback(`WebGPU is present but unusable here: ${e}.`);
+    console.warn('WebGPU could not start:', e); // the adapter's own words, for bug reports
+    await cpuFallback('This browser has WebGPU, but could not start it on this device (its ' +
+      `graphics driver or settings block it). ${howTo}`);
     return;
   }
   appRunning = true;
@@ -517,7 +569,7 @@ async function main() {
     let text = null;
     try { text = paramsFromFragment(); } catch (e) { /* reported below */ }
     if (text === null) wasm.reportError('This link does not hold a readable texture (#p=…).');
-    else importJson(text, 'the link');
+    else openLinkParams(text);
   }
   window.proctex.ready = true;
   buildGallery();

@@ -267,12 +267,18 @@ async function handle(m) {
   switch (m.type) {
     case 'open': {
       postMessage({ type: 'progress', id: m.id, stage: 'Decoding' });
+      // Limits before the browser's decoder takes the memory (see jobs::check_photo_file).
+      try { wasm.checkPhotoFile(m.bytes); } catch (e) { throw new Error(`${m.name}: ${e}`); }
       let bitmap;
       try {
         bitmap = await decode(m.bytes);
       } catch (e) {
         throw new Error(`${m.name}: cannot read the image: the file is empty, truncated, ` +
           'corrupt or not an image format the browser decodes');
+      }
+      try { wasm.checkPhotoSize(bitmap.width, bitmap.height); } catch (e) {
+        bitmap.close();
+        throw new Error(`${m.name}: ${e}`);
       }
       const decodeMs = performance.now() - t0;
       try {

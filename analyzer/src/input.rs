@@ -15,6 +15,7 @@ use crate::error::{Error, Result};
 pub const MIN_SIDE: u32 = 32;
 pub use crate::limits::{MAX_PIXELS, MAX_SIDE};
 /// Bytes the decoder may allocate per allowed pixel (RGBA at 16 bits, the widest layout).
+#[cfg(feature = "decode")]
 const ALLOC_PER_PIXEL: u64 = 8;
 
 /// An RGB image with `f32` channels in `[0, 1]`, row-major, top row first.
@@ -98,7 +99,13 @@ impl Photo {
         // The header's own dimensions first: the decoder's limit error says neither the size nor
         // the limit.
         if let Some((w, h)) = crate::image_header::read(bytes).and_then(|h| h.size) {
-            crate::limits::check_pixels("the photo", w, h, max_pixels)?;
+            crate::limits::check_pixels(
+                "the photo",
+                w,
+                h,
+                max_pixels,
+                crate::limits::PAST_THE_LIMIT,
+            )?;
         }
         // The decoders are fuzzed upstream, but a panic on hostile bytes must still become an
         // error here rather than a crash of the CLI or a dead browser tab.
@@ -123,7 +130,13 @@ impl Photo {
             reader.limits(limits);
             let mut decoder = reader.into_decoder().map_err(decode_error)?;
             let (w, h) = decoder.dimensions();
-            crate::limits::check_pixels("the photo", w as u64, h as u64, max_pixels)?;
+            crate::limits::check_pixels(
+                "the photo",
+                w as u64,
+                h as u64,
+                max_pixels,
+                crate::limits::PAST_THE_LIMIT,
+            )?;
             let orientation = decoder.orientation().map_err(decode_error)?;
             let mut img = DynamicImage::from_decoder(decoder).map_err(decode_error)?;
             img.apply_orientation(orientation);

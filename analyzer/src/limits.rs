@@ -75,8 +75,15 @@ pub fn bounded_message(message: &str) -> String {
 }
 
 /// Refuses an image of `width × height` when a side is over [`MAX_SIDE`] or it has more than
-/// `max_pixels` pixels. `what` names it ("the photo", "the render").
-pub fn check_pixels(what: &str, width: u64, height: u64, max_pixels: u64) -> Result<()> {
+/// `max_pixels` pixels. `what` names it ("the photo", "the render"); `past` says how to go past
+/// the pixel limit where one can ([`PAST_THE_LIMIT`] in the CLI).
+pub fn check_pixels(
+    what: &str,
+    width: u64,
+    height: u64,
+    max_pixels: u64,
+    past: &str,
+) -> Result<()> {
     if width > MAX_SIDE as u64 || height > MAX_SIDE as u64 {
         return Err(Error::TooLarge(format!(
             "{what} is {width}×{height} pixels; a side may be at most {MAX_SIDE}"
@@ -84,7 +91,7 @@ pub fn check_pixels(what: &str, width: u64, height: u64, max_pixels: u64) -> Res
     }
     if width * height > max_pixels {
         return Err(Error::TooLarge(format!(
-            "{what} is {width}×{height} pixels ({}), over the limit of {}; {PAST_THE_LIMIT}",
+            "{what} is {width}×{height} pixels ({}), over the limit of {}; {past}",
             pixel_count(width * height),
             pixel_count(max_pixels)
         )));
@@ -144,12 +151,12 @@ mod tests {
 
     #[test]
     fn pixel_and_file_limits_say_the_limit_and_the_way_past_it() {
-        assert!(check_pixels("the photo", 4000, 3000, MAX_PIXELS).is_ok());
-        let e = check_pixels("the photo", 9000, 9000, MAX_PIXELS)
+        assert!(check_pixels("the photo", 4000, 3000, MAX_PIXELS, PAST_THE_LIMIT).is_ok());
+        let e = check_pixels("the photo", 9000, 9000, MAX_PIXELS, PAST_THE_LIMIT)
             .unwrap_err()
             .to_string();
         assert!(e.contains("50.0 MP") && e.contains("--max-pixels"), "{e}");
-        let e = check_pixels("the render", 20000, 10, u64::MAX)
+        let e = check_pixels("the render", 20000, 10, u64::MAX, PAST_THE_LIMIT)
             .unwrap_err()
             .to_string();
         assert!(e.contains("16384"), "{e}");

@@ -2,6 +2,7 @@
 //! in `shaders/`; it is plain wgpu (no UI types) so that native tests can run it headless and
 //! compare its pixels with the CPU reference renderer.
 
+pub mod preset_store;
 pub mod presets;
 pub mod renderer;
 pub mod tile_export;

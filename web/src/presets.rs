@@ -10,6 +10,7 @@
 //!
 //! Plain Rust (no browser types) so that native tests cover it.
 
+use proctex::limits::quote;
 use proctex::params::Params;
 use serde::{Deserialize, Serialize};
 
@@ -55,8 +56,46 @@ pub fn library_json(presets: &[Preset]) -> String {
     .expect("presets serialise")
 }
 
-/// Parses and validates a library file. The error names the preset and field that is wrong.
+/// Parses and validates a library file as a whole (Import): the first bad preset fails it, and
+/// the error names the preset and the field.
 pub fn parse_library(text: &str) -> Result<Vec<Preset>, String> {
+    let items = match library_items(text)? {
+        Items::Single(p) => return Ok(vec![*p]),
+        Items::List(items) => items,
+    };
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, item)| parse_preset(i, item))
+        .collect()
+}
+
+/// Reads a stored library preset by preset: the presets that parse, and for each one that does
+/// not, what is wrong with it (`presets[i] (name): …`). An error only when the library as a
+/// whole is unreadable (not JSON, another format, no list).
+pub fn read_library(text: &str) -> Result<(Vec<Preset>, Vec<String>), String> {
+    let items = match library_items(text)? {
+        Items::Single(p) => return Ok((vec![*p], Vec::new())),
+        Items::List(items) => items,
+    };
+    let (mut good, mut bad) = (Vec::new(), Vec::new());
+    for (i, item) in items.iter().enumerate() {
+        match parse_preset(i, item) {
+            Ok(p) => good.push(p),
+            Err(e) => bad.push(e),
+        }
+    }
+    Ok((good, bad))
+}
+
+enum Items {
+    /// A bare params document: one preset.
+    Single(Box<Preset>),
+    /// A library's `presets` list, unparsed.
+    List(Vec<serde_json::Value>),
+}
+
+fn library_items(text: &str) -> Result<Items, String> {
     let value =
         proctex::json::parse(text).map_err(|e| format!("not a presets file: not JSON ({e})"))?;
     match value.get("format").and_then(|f| f.as_str()) {
@@ -64,15 +103,16 @@ pub fn parse_library(text: &str) -> Result<Vec<Preset>, String> {
         // A single params document is welcome too: it becomes one preset.
         Some(proctex::params::FORMAT) => {
             let p = Params::from_json(text).map_err(|e| e.to_string())?;
-            return Ok(vec![Preset {
+            return Ok(Items::Single(Box::new(Preset {
                 name: "imported".into(),
                 params: p,
                 morph: None,
-            }]);
+            })));
         }
         Some(f) => {
             return Err(format!(
-                "unsupported presets format `{f}`; this version reads `{LIBRARY_FORMAT}`"
+                "unsupported presets format `{}`; this version reads `{LIBRARY_FORMAT}`",
+                quote(f)
             ));
         }
         None => {
@@ -81,57 +121,60 @@ pub fn parse_library(text: &str) -> Result<Vec<Preset>, String> {
             ));
         }
     }
-    let items = value
-        .get("presets")
-        .and_then(|p| p.as_array())
-        .ok_or("presets file: `presets` must be a list")?;
+    match value {
+        serde_json::Value::Object(mut m) => match m.remove("presets") {
+            Some(serde_json::Value::Array(items)) => Ok(Items::List(items)),
+            _ => Err("presets file: `presets` must be a list".into()),
+        },
+        _ => Err("presets file: `presets` must be a list".into()),
+    }
+}
+
+/// The `i`-th item of a library's list as a preset; the error names it.
+fn parse_preset(i: usize, item: &serde_json::Value) -> Result<Preset, String> {
     let params_of = |v: &serde_json::Value, at: &str| -> Result<Params, String> {
         Params::from_json(&v.to_string()).map_err(|e| format!("{at}: {e}"))
     };
-    let mut out = Vec::with_capacity(items.len());
-    for (i, item) in items.iter().enumerate() {
-        let name = item
-            .get("name")
-            .and_then(|n| n.as_str())
-            .ok_or(format!("presets[{i}]: `name` must be a string"))?
-            .to_string();
-        let at = format!("presets[{i}] ({name})");
-        let params = params_of(
-            item.get("params")
-                .ok_or(format!("{at}: `params` is missing"))?,
-            &at,
-        )?;
-        let morph = match item.get("morph") {
-            None | Some(serde_json::Value::Null) => None,
-            Some(m) => {
-                let keys = m
-                    .get("keys")
-                    .and_then(|k| k.as_array())
-                    .ok_or(format!("{at}: morph.keys must be a list"))?
-                    .iter()
-                    .enumerate()
-                    .map(|(k, v)| params_of(v, &format!("{at}.morph.keys[{k}]")))
-                    .collect::<Result<Vec<_>, _>>()?;
-                if keys.len() < 2 {
-                    return Err(format!("{at}: a morph needs two or more keys"));
-                }
-                let duration_s = m
-                    .get("duration_s")
-                    .and_then(|d| d.as_f64())
-                    .filter(|d| d.is_finite() && *d > 0.0 && *d <= 3600.0)
-                    .ok_or(format!(
-                        "{at}: morph.duration_s must be in (0, 3600] seconds"
-                    ))? as f32;
-                Some(MorphPreset { keys, duration_s })
+    let name = item
+        .get("name")
+        .and_then(|n| n.as_str())
+        .ok_or(format!("presets[{i}]: `name` must be a string"))?
+        .to_string();
+    let at = format!("presets[{i}] ({})", quote(&name));
+    let params = params_of(
+        item.get("params")
+            .ok_or(format!("{at}: `params` is missing"))?,
+        &at,
+    )?;
+    let morph = match item.get("morph") {
+        None | Some(serde_json::Value::Null) => None,
+        Some(m) => {
+            let keys = m
+                .get("keys")
+                .and_then(|k| k.as_array())
+                .ok_or(format!("{at}: morph.keys must be a list"))?
+                .iter()
+                .enumerate()
+                .map(|(k, v)| params_of(v, &format!("{at}.morph.keys[{k}]")))
+                .collect::<Result<Vec<_>, _>>()?;
+            if keys.len() < 2 {
+                return Err(format!("{at}: a morph needs two or more keys"));
             }
-        };
-        out.push(Preset {
-            name,
-            params,
-            morph,
-        });
-    }
-    Ok(out)
+            let duration_s = m
+                .get("duration_s")
+                .and_then(|d| d.as_f64())
+                .filter(|d| d.is_finite() && *d > 0.0 && *d <= 3600.0)
+                .ok_or(format!(
+                    "{at}: morph.duration_s must be in (0, 3600] seconds"
+                ))? as f32;
+            Some(MorphPreset { keys, duration_s })
+        }
+    };
+    Ok(Preset {
+        name,
+        params,
+        morph,
+    })
 }
 
 #[cfg(test)]

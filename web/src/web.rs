@@ -176,6 +176,20 @@ pub fn import_presets(text: String) {
     send(Command::ImportPresets(text));
 }
 
+/// Another tab wrote the presets library: the app shows it (the page listens for `storage`).
+#[wasm_bindgen(js_name = presetsChangedElsewhere)]
+pub fn presets_changed_elsewhere() {
+    send(Command::PresetsChangedElsewhere);
+}
+
+/// The WGSL or GLSL shader (`format`: "wgsl" or "glsl") of a params document: the export that
+/// needs no GPU, for the page without WebGPU.
+#[wasm_bindgen(js_name = exportShader)]
+pub fn export_shader(params_json: String, format: String) -> Result<String, JsValue> {
+    let p = Params::from_json(&params_json).map_err(js_error)?;
+    proctex::export::shader(std::slice::from_ref(&p), &format).map_err(js_error)
+}
+
 /// Adds a built-in gallery preset (the page analyses the shipped samples in the worker).
 #[wasm_bindgen(js_name = addGalleryPreset)]
 pub fn add_gallery_preset(name: String, params_json: String) -> Result<(), JsValue> {

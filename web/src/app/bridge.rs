@@ -9,6 +9,7 @@ use proctex::params::Params;
 use wasm_bindgen::JsValue;
 
 use crate::jobs::{ImageStats, Report, SuggestionRow};
+use crate::preset_store::Change;
 use crate::presets::{Preset, parse_library};
 
 use super::{PhotoPreview, ProctexApp, SuggestState, TileSettings, ViewMode, ViewState, now_ms};
@@ -58,6 +59,8 @@ pub enum Command {
     ViewLimit(Option<egui::Vec2>),
     /// Add the presets of a library file (validated as a whole first).
     ImportPresets(String),
+    /// Another tab wrote the presets library (the browser's `storage` event).
+    PresetsChangedElsewhere,
     /// A built-in gallery preset (a shipped sample's analysis).
     GalleryPreset(String, Box<Params>),
     /// The worker refined `done` of `total` families of the current photo's suggestions.
@@ -130,6 +133,12 @@ pub struct Snapshot {
     pub plots_current: bool,
     /// Names of the presets, in list order.
     pub presets: Vec<String>,
+    /// The stored library's notice (unreadable presets), until dismissed.
+    pub presets_notice: Option<String>,
+    /// Why the last presets save wrote nothing (until one writes).
+    pub presets_save_error: Option<String>,
+    /// Saving presets is refused until the unreadable stored library is downloaded or discarded.
+    pub presets_locked: bool,
     /// Names of the built-in gallery presets.
     pub gallery: Vec<String>,
     /// The morph being shown: t, or `None` when no morph is active.
@@ -251,8 +260,9 @@ impl ProctexApp {
                 }
                 Command::Error(e) => {
                     self.busy = None;
-                    self.error = Some(e);
+                    self.error = Some(proctex::limits::bounded_message(&e));
                 }
+                Command::PresetsChangedElsewhere => self.presets_changed_elsewhere(),
                 Command::SetParams(p) => {
                     self.params = Some(*p);
                     self.error = None;
@@ -295,9 +305,9 @@ impl ProctexApp {
                     Ok(new) => {
                         let mut list = std::mem::take(&mut self.presets.list);
                         let added = new.len();
-                        list.extend(new);
+                        list.extend(new.iter().cloned());
                         self.set_presets(list);
-                        self.persist_presets();
+                        self.persist_presets(Change::Added(&new));
                         self.status_note = Some(format!("Imported {added} presets"));
                     }
                     Err(e) => {
@@ -333,6 +343,9 @@ impl ProctexApp {
                 period_lines: self.period_lines,
                 plots_current: self.plots_current(),
                 presets: self.presets.list.iter().map(|p| p.name.clone()).collect(),
+                presets_notice: self.presets.store.notice.clone(),
+                presets_save_error: self.presets.store.save_error.clone(),
+                presets_locked: self.presets.store.locked(),
                 gallery: self
                     .presets
                     .gallery

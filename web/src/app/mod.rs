@@ -236,6 +236,8 @@ struct TileJob {
 #[derive(Default)]
 struct PresetsState {
     list: Vec<Preset>,
+    /// Where the list is stored, and what the user must know about it.
+    store: crate::preset_store::PresetStore,
     /// Thumbnails, parallel to `list` (rendered from the params on demand).
     thumbs: Vec<Option<egui::TextureHandle>>,
     /// Chosen as morph keys, parallel to `list`.

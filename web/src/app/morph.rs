@@ -3,6 +3,7 @@
 
 use eframe::egui;
 
+use crate::preset_store::Change;
 use crate::presets::{MorphPreset, Preset};
 
 use super::{ProctexApp, export_shader};
@@ -60,17 +61,18 @@ impl ProctexApp {
             if r.clicked()
                 && let Some(keys) = self.presets.morph.clone()
             {
-                let mut list = self.presets.list.clone();
-                list.push(Preset {
+                let added = Preset {
                     name: format!("morph of {n_keys}"),
                     params: keys[0].clone(),
                     morph: Some(MorphPreset {
                         keys,
                         duration_s: self.presets.duration_s,
                     }),
-                });
+                };
+                let mut list = self.presets.list.clone();
+                list.push(added.clone());
                 self.set_presets(list);
-                self.persist_presets();
+                self.persist_presets(Change::Added(&[added]));
             }
             let r = ui.small_button("Stop morphing");
             self.record("morph.stop", &r);

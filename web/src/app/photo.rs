@@ -123,6 +123,7 @@ impl ProctexApp {
             ui.label("Loading the sample photo…");
         }
         if let Some(err) = self.error.clone() {
+            let err = proctex::limits::bounded_message(&err);
             let r = ui.colored_label(egui::Color32::from_rgb(240, 90, 70), err);
             self.record("error", &r);
             if ui.small_button("Dismiss").clicked() {

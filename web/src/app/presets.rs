@@ -4,32 +4,44 @@
 use eframe::egui;
 use wasm_bindgen::JsValue;
 
-use crate::presets::{Preset, STORAGE_KEY, library_json, parse_library};
+use crate::preset_store::{Change, KeyValue, PresetStore, Saved};
+use crate::presets::{Preset, library_json};
 
 use super::{ProctexApp, host};
 
+/// The browser's `localStorage` as the presets' [`KeyValue`] store.
+struct LocalStorage(web_sys::Storage);
+
+impl LocalStorage {
+    fn get() -> Option<LocalStorage> {
+        web_sys::window()
+            .and_then(|w| w.local_storage().ok().flatten())
+            .map(LocalStorage)
+    }
+}
+
+impl KeyValue for LocalStorage {
+    fn get(&self, key: &str) -> Result<Option<String>, String> {
+        self.0.get_item(key).map_err(|e| format!("{e:?}"))
+    }
+    fn set(&self, key: &str, value: &str) -> Result<(), String> {
+        self.0.set_item(key, value).map_err(|e| format!("{e:?}"))
+    }
+}
+
 impl ProctexApp {
-    /// Loads the presets from `localStorage`. An unreadable stored library is moved aside to a
-    /// backup key (never deleted) and reported.
+    /// Loads the presets from `localStorage` (see [`PresetStore`]: an unreadable library is
+    /// kept aside, one bad preset costs only itself).
     pub(super) fn with_stored_presets(mut self) -> Self {
-        let Some(storage) = web_sys::window().and_then(|w| w.local_storage().ok().flatten()) else {
-            self.error = Some(
+        let Some(kv) = LocalStorage::get() else {
+            self.presets.store.notice = Some(
                 "Presets: this browser gives the page no storage; presets will not persist".into(),
             );
             return self;
         };
-        if let Ok(Some(text)) = storage.get_item(STORAGE_KEY) {
-            match parse_library(&text) {
-                Ok(list) => self.set_presets(list),
-                Err(e) => {
-                    let backup = format!("{STORAGE_KEY}.unreadable-{}", js_sys::Date::now() as u64);
-                    let _ = storage.set_item(&backup, &text);
-                    self.error = Some(format!(
-                        "The stored presets could not be read ({e}); they were kept under the storage key {backup}"
-                    ));
-                }
-            }
-        }
+        let (store, list) = PresetStore::open(&kv, js_sys::Date::now() as u64);
+        self.presets.store = store;
+        self.set_presets(list);
         self
     }
 
@@ -41,26 +53,98 @@ impl ProctexApp {
         self.presets.renaming = None;
     }
 
-    /// Writes the library to `localStorage`. A failed write (full quota) leaves the stored
-    /// library as it was; the presets stay in memory and the user is told to export them.
-    pub(super) fn persist_presets(&mut self) {
-        let text = library_json(&self.presets.list);
-        let ok = web_sys::window()
-            .and_then(|w| w.local_storage().ok().flatten())
-            .map(|s| s.set_item(STORAGE_KEY, &text).is_ok())
-            .unwrap_or(false);
-        if !ok {
-            self.error = Some(
-                "Presets could not be saved (browser storage full or unavailable): the previously \
-                 saved presets are unchanged; use Export… to keep the current ones"
-                    .into(),
-            );
+    /// Writes the library after `change` (the list is already changed in memory). Nothing
+    /// stored is lost: a full quota leaves the stored library as it was, another tab's saves
+    /// are kept (see [`PresetStore::save`]).
+    pub(super) fn persist_presets(&mut self, change: Change) {
+        let Some(kv) = LocalStorage::get() else {
+            return;
+        };
+        let list = self.presets.list.clone();
+        match self.presets.store.save(&kv, &list, change) {
+            Ok(Saved::Written) => {}
+            Ok(Saved::Merged(list)) => {
+                self.set_presets(list);
+                self.status_note =
+                    Some("Presets were changed in another tab: yours were added to them".into());
+            }
+            Ok(Saved::Reloaded(list)) => {
+                self.set_presets(list);
+                self.presets.store.notice = Some(
+                    "Presets were changed in another tab, so that list is shown now; your last \
+                     edit was not applied: do it again"
+                        .into(),
+                );
+            }
+            // Shown by `presets_notice` until a save goes through.
+            Err(_) => {}
         }
+    }
+
+    /// Another tab wrote the library: show it (the page calls this on the `storage` event).
+    pub(super) fn presets_changed_elsewhere(&mut self) {
+        let Some(kv) = LocalStorage::get() else {
+            return;
+        };
+        if let Some(list) = self.presets.store.changed_elsewhere(&kv) {
+            self.set_presets(list);
+            self.status_note = Some("Presets updated from another tab".into());
+        }
+    }
+
+    /// The stored library's notice, which stays until dismissed, with the unreadable library's
+    /// download and discard.
+    fn presets_notice(&mut self, ui: &mut egui::Ui) {
+        if let Some(e) = &self.presets.store.save_error {
+            ui.colored_label(ui.visuals().error_fg_color, e);
+        }
+        let Some(notice) = self.presets.store.notice.clone() else {
+            return;
+        };
+        ui.colored_label(ui.visuals().error_fg_color, notice);
+        ui.horizontal_wrapped(|ui| {
+            if let Some(text) = self
+                .presets
+                .store
+                .unreadable
+                .as_ref()
+                .map(|u| u.text.clone())
+            {
+                let r = ui.small_button("Download the unreadable library");
+                self.record("presets.download_unreadable", &r);
+                if r.clicked() {
+                    host(
+                        "downloadText",
+                        &[
+                            JsValue::from_str("proctex-presets-unreadable.json"),
+                            JsValue::from_str(&text),
+                        ],
+                    );
+                    self.presets.store.downloaded();
+                }
+            }
+            if self.presets.store.locked() {
+                let r = ui
+                    .small_button("Discard it")
+                    .on_hover_text("Let new saves replace the unreadable library");
+                self.record("presets.discard_unreadable", &r);
+                if r.clicked() {
+                    self.presets.store.discard();
+                }
+            } else {
+                let r = ui.small_button("Dismiss");
+                self.record("presets.dismiss_notice", &r);
+                if r.clicked() {
+                    self.presets.store.dismiss();
+                }
+            }
+        });
     }
 
     /// Save, load, rename, reorder, delete presets; choose two or more to morph between.
     pub(super) fn presets_panel(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
+        self.presets_notice(ui);
         ui.horizontal(|ui| {
             let r = ui.add(
                 egui::TextEdit::singleline(&mut self.presets.new_name)
@@ -81,15 +165,16 @@ impl ProctexApp {
                         .unwrap_or_else(|| format!("preset {}", self.presets.list.len() + 1)),
                     n => n.to_string(),
                 };
-                let mut list = std::mem::take(&mut self.presets.list);
-                list.push(Preset {
+                let added = Preset {
                     name,
                     params: p,
                     morph: None,
-                });
+                };
+                let mut list = std::mem::take(&mut self.presets.list);
+                list.push(added.clone());
                 self.set_presets(list);
                 self.presets.new_name.clear();
-                self.persist_presets();
+                self.persist_presets(Change::Added(&[added]));
             }
         });
         ui.horizontal(|ui| {
@@ -141,10 +226,16 @@ impl ProctexApp {
                     .on_hover_text("Copy the gallery into your presets (to rename, morph, export)");
                 self.record("gallery.add", &r);
                 if r.clicked() {
+                    let added: Vec<Preset> = self
+                        .presets
+                        .gallery
+                        .iter()
+                        .map(|(p, _)| p.clone())
+                        .collect();
                     let mut list = std::mem::take(&mut self.presets.list);
-                    list.extend(self.presets.gallery.iter().map(|(p, _)| p.clone()));
+                    list.extend(added.iter().cloned());
                     self.set_presets(list);
-                    self.persist_presets();
+                    self.persist_presets(Change::Added(&added));
                 }
             });
             if let Some(i) = load {
@@ -255,6 +346,6 @@ impl ProctexApp {
         if what == "renamed" {
             self.presets.selected = selected;
         }
-        self.persist_presets();
+        self.persist_presets(Change::Edited);
     }
 }

@@ -24,6 +24,18 @@ pub fn analyze_rgba(
 }
 
 /// Worker job: the model's plot statistics for a params document, as JSON.
+/// Throws when a photo file must not be decoded (too large, TIFF); see `jobs::check_photo_file`.
+#[wasm_bindgen(js_name = checkPhotoFile)]
+pub fn check_photo_file(bytes: &[u8]) -> Result<(), JsValue> {
+    jobs::check_photo_file(bytes).map_err(|e| JsValue::from_str(&e))
+}
+
+/// Throws when a decoded photo is over the pixel limit; see `jobs::check_photo_size`.
+#[wasm_bindgen(js_name = checkPhotoSize)]
+pub fn check_photo_size(width: u32, height: u32) -> Result<(), JsValue> {
+    jobs::check_photo_size(width as u64, height as u64).map_err(|e| JsValue::from_str(&e))
+}
+
 #[wasm_bindgen(js_name = modelStats)]
 pub fn model_stats(params_json: String) -> Result<String, JsValue> {
     let p = Params::from_json(&params_json).map_err(js_error)?;

@@ -11,12 +11,53 @@ use proctex::analyze::{
 };
 use proctex::db::Db;
 use proctex::distance::radial_spectrum;
+use proctex::image_header::{self, Format, Header};
 use proctex::input::Photo;
+use proctex::limits;
 use proctex::params::Params;
 use proctex::render::{View, render};
 use proctex::retrieve::{Refinement, Suggester, Suggestion};
 use proctex::structure::fit_structured;
 use serde::{Deserialize, Serialize};
+
+/// How the page tells a user to go past the photo pixel limit.
+const PAST_THE_LIMIT_IN_THE_PAGE: &str =
+    "scale it down first (the proctex CLI can go past this with --max-pixels)";
+
+/// Refuses a photo file before the browser decodes it: over [`limits::MAX_FILE_BYTES`], a TIFF
+/// (browsers do not decode it), or a header that declares more than [`limits::MAX_PIXELS`]
+/// pixels (a 1 MB PNG of 20000² would decode into 1.6 GB). Formats whose header is not read
+/// here go to the browser's decoder, and their size is checked after it
+/// ([`check_photo_size`]).
+pub fn check_photo_file(bytes: &[u8]) -> Result<(), String> {
+    limits::check_file_bytes(bytes.len() as u64).map_err(|e| e.to_string())?;
+    match image_header::read(bytes) {
+        Some(Header {
+            format: Format::Tiff,
+            ..
+        }) => Err(
+            "TIFF images cannot be opened in the browser; convert it to PNG or JPEG \
+                   (the proctex CLI reads TIFF)"
+                .into(),
+        ),
+        Some(Header {
+            size: Some((w, h)), ..
+        }) => check_photo_size(w, h),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses a decoded photo of `width × height` over the photo limits.
+pub fn check_photo_size(width: u64, height: u64) -> Result<(), String> {
+    limits::check_pixels(
+        "the photo",
+        width,
+        height,
+        limits::MAX_PIXELS,
+        PAST_THE_LIMIT_IN_THE_PAGE,
+    )
+    .map_err(|e| e.to_string())
+}
 
 /// Bins of the channel histograms in the plots.
 pub const HIST_BINS: usize = 64;
@@ -383,6 +424,32 @@ impl Refiner {
 mod tests {
     use super::*;
     use proctex::input::Crop;
+
+    /// The page refuses, before decoding, what the CLI refuses: too many pixels by the header,
+    /// TIFF (with the reason), files over the byte limit; and lets ordinary photos through.
+    #[test]
+    fn photo_files_are_checked_before_the_browser_decodes_them() {
+        let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+        png.extend_from_slice(&20000u32.to_be_bytes());
+        png.extend_from_slice(&20000u32.to_be_bytes());
+        let e = check_photo_file(&png).unwrap_err();
+        assert!(e.contains("20000×20000") && e.contains("16384"), "{e}");
+        let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+        png.extend_from_slice(&9000u32.to_be_bytes());
+        png.extend_from_slice(&8000u32.to_be_bytes());
+        let e = check_photo_file(&png).unwrap_err();
+        assert!(e.contains("50.0 MP") && e.contains("scale it down"), "{e}");
+        let e = check_photo_file(b"II*\0\x08\0\0\0").unwrap_err();
+        assert!(e.contains("TIFF"), "{e}");
+        let path = format!(
+            "{}/../../www/samples/stk_rock_mountain_512.png",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        assert_eq!(check_photo_file(&std::fs::read(path).unwrap()), Ok(()));
+        assert_eq!(check_photo_file(b"not a known header"), Ok(()));
+        assert!(check_photo_size(8000, 8000).is_err());
+        assert!(check_photo_size(4000, 3000).is_ok());
+    }
 
     fn sample() -> (Vec<u8>, u32, u32) {
         let path = format!(

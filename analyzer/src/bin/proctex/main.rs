@@ -622,7 +622,13 @@ fn cmd_render(mut a: Args) -> Result<()> {
             "image size {w}×{h}: a side must be at least 1"
         )));
     }
-    limits::check_pixels("the render", w as u64, h as u64, a.render_pixels())?;
+    limits::check_pixels(
+        "the render",
+        w as u64,
+        h as u64,
+        a.render_pixels(),
+        limits::PAST_THE_LIMIT,
+    )?;
     if !(view.pixel_size.is_finite() && view.pixel_size > 0.0) {
         return Err(usage("--pixel-size must be a positive number"));
     }
