@@ -189,37 +189,10 @@ function importJson(text, what) {
   return true;
 }
 
-// A share link opens a texture and nothing else: a presets library in a link is refused, so
-// that following a link never writes to the user's presets.
-function openLinkParams(text) {
-  let doc = null;
-  try { doc = JSON.parse(text); } catch (e) { /* reported below */ }
-  if (!doc || doc.format !== 'proctex/1') {
-    wasm.reportError('This link does not hold a texture (#p=…): links open a texture\'s params ' +
-      'only; a presets library is opened with Import… in the presets panel.');
-    return false;
-  }
-  try { wasm.setParams(text); } catch (e) {
-    wasm.reportError(`the link: ${e}`);
-    return false;
-  }
-  return true;
-}
-
-// Share links: the params JSON, base64url, in the fragment (#p=…).
+// Share links: the params JSON, base64url, in the fragment (#p=…); encoded and decoded in
+// wasm (proctex::share), which also refuses anything but a texture in a link.
 function shareLink(json) {
-  const bytes = new TextEncoder().encode(json);
-  let bin = '';
-  for (const b of bytes) bin += String.fromCharCode(b);
-  const b64 = btoa(bin).replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
-  return `${location.origin}${location.pathname}#p=${b64}`;
-}
-function paramsFromFragment() {
-  const m = /^#p=([A-Za-z0-9_-]+)$/.exec(location.hash);
-  if (!m) return null;
-  const b64 = m[1].replace(/-/g, '+').replace(/_/g, '/');
-  const bin = atob(b64 + '='.repeat((4 - (b64.length % 4)) % 4));
-  return new TextDecoder().decode(Uint8Array.from(bin, (c) => c.charCodeAt(0)));
+  return `${location.origin}${location.pathname}${wasm.shareFragment(json)}`;
 }
 
 // The most bytes the page reads from one file: the analyzer's limit (limits::MAX_FILE_BYTES),
@@ -566,10 +539,7 @@ async function main() {
   await loadStartupSample();
   // A share link: the texture in the fragment replaces the sample's params.
   if (location.hash.startsWith('#p=')) {
-    let text = null;
-    try { text = paramsFromFragment(); } catch (e) { /* reported below */ }
-    if (text === null) wasm.reportError('This link does not hold a readable texture (#p=…).');
-    else openLinkParams(text);
+    try { wasm.openShareFragment(location.hash); } catch (e) { wasm.reportError(`${e}`); }
   }
   window.proctex.ready = true;
   buildGallery();

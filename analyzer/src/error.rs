@@ -35,6 +35,9 @@ pub enum Error {
         /// What is wrong with it.
         message: String,
     },
+    /// A share link that holds no texture.
+    #[error("{0}")]
+    Link(String),
     /// File system error, with the path.
     #[error("{path}: {message}")]
     Io {

@@ -26,6 +26,7 @@ pub mod rng;
 pub mod noise;
 pub mod params;
 pub mod pattern;
+pub mod share;
 
 // Layer: rendering the model (the per-pixel twins of the shaders) and measuring images.
 pub mod render;

@@ -264,6 +264,22 @@ pub fn set_params(json: String) -> Result<(), JsValue> {
     Ok(())
 }
 
+/// Opens the texture of a share link's fragment (`#p=…`, see `proctex::share`); throws the
+/// reason when the link holds no texture (a presets library, junk, too long).
+#[wasm_bindgen(js_name = openShareFragment)]
+pub fn open_share_fragment(fragment: String) -> Result<(), JsValue> {
+    let p = proctex::share::params_of_fragment(&fragment).map_err(js_error)?;
+    send(Command::SetParams(Box::new(p)));
+    Ok(())
+}
+
+/// The share-link fragment (`#p=…`) of a params document.
+#[wasm_bindgen(js_name = shareFragment)]
+pub fn share_fragment(params_json: String) -> Result<String, JsValue> {
+    let p = Params::from_json(&params_json).map_err(js_error)?;
+    Ok(proctex::share::fragment(&p))
+}
+
 /// Sets the texture view: world point at the view's top-left, world units per CSS pixel.
 #[wasm_bindgen(js_name = setView)]
 pub fn set_view(origin_x: f32, origin_y: f32, units_per_point: f32) {
