@@ -15,9 +15,12 @@ const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwx
 
 /// The fragment (with its `#p=`) that carries `params`.
 pub fn fragment(params: &Params) -> String {
-    let bytes = params.to_json().into_bytes();
-    let mut out = String::with_capacity(3 + bytes.len().div_ceil(3) * 4);
-    out.push_str("#p=");
+    format!("#p={}", base64url(params.to_json().as_bytes()))
+}
+
+/// `bytes` in base64url without padding.
+fn base64url(bytes: &[u8]) -> String {
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for chunk in bytes.chunks(3) {
         let b = [
             chunk[0],
@@ -104,22 +107,7 @@ mod tests {
 
     #[test]
     fn libraries_junk_and_huge_links_are_refused_in_words() {
-        let encode = |text: &str| {
-            // Base64url of arbitrary text, through the same encoder as params.
-            let mut out = String::from("#p=");
-            for chunk in text.as_bytes().chunks(3) {
-                let b = [
-                    chunk[0],
-                    *chunk.get(1).unwrap_or(&0),
-                    *chunk.get(2).unwrap_or(&0),
-                ];
-                let v = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-                for k in 0..=chunk.len() {
-                    out.push(ALPHABET[(v >> (18 - 6 * k) & 63) as usize] as char);
-                }
-            }
-            out
-        };
+        let encode = |text: &str| format!("#p={}", base64url(text.as_bytes()));
         let library = r#"{"format": "proctex-presets/1", "presets": []}"#;
         let e = params_of_fragment(&encode(library))
             .unwrap_err()
