@@ -38,8 +38,11 @@ use crate::params::{MAX_BANDS, Params};
 use crate::render::pattern::{pattern_at, ramp};
 use crate::render::{Image, Prepared, colour};
 
-/// The largest tile side (the WebGPU limit on a texture side, and 256 MiB as 8-bit RGBA).
+/// The largest tile side (the WebGPU limit on a texture side, and 256 MiB as 8-bit RGBA): the
+/// render limit of [`crate::limits`], so that the app's PNG tiles and the CLI's renders stop at
+/// the same size.
 pub const MAX_TILE: u32 = 8192;
+const _: () = assert!(MAX_TILE as u64 * MAX_TILE as u64 == crate::limits::MAX_RENDER_PIXELS);
 
 /// A seamless tile: its size, pixel size and the period of every band over it.
 #[derive(Clone, Debug, PartialEq)]
