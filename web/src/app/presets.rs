@@ -103,21 +103,18 @@ impl ProctexApp {
         };
         ui.colored_label(ui.visuals().error_fg_color, notice);
         ui.horizontal_wrapped(|ui| {
-            if let Some(text) = self
-                .presets
-                .store
-                .unreadable
-                .as_ref()
-                .map(|u| u.text.clone())
-            {
+            if self.presets.store.unreadable.is_some() {
                 let r = ui.small_button("Download the unreadable library");
                 self.record("presets.download_unreadable", &r);
-                if r.clicked() {
+                // The text (megabytes, maybe) is read only on the click, not on every frame.
+                if r.clicked()
+                    && let Some(u) = &self.presets.store.unreadable
+                {
                     host(
                         "downloadText",
                         &[
                             JsValue::from_str("proctex-presets-unreadable.json"),
-                            JsValue::from_str(&text),
+                            JsValue::from_str(&u.text),
                         ],
                     );
                     self.presets.store.downloaded();
