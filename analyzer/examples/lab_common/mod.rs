@@ -1,9 +1,22 @@
 //! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`): the
 //! quadrant patches of the labelled photos, and the photo-like augmentation of a clean pattern.
 
+// Not every laboratory fits a discriminant.
+#[allow(dead_code)]
+pub mod lda;
+// Only the topology laboratory measures the joints.
+#[allow(dead_code)]
+pub mod topology;
+
 use proctex::cues::blur;
+use proctex::db::sample;
 use proctex::devset::{Category, parse_manifest};
+use proctex::gabor::{Descriptor, FREQUENCIES, ORIENTATIONS, QUANTILES, SIZE};
 use proctex::input::{Crop, Photo};
+use proctex::noise::Tile;
+use proctex::pattern::PatternKind;
+use proctex::render::pattern::structure_image;
+use proctex::rng;
 
 /// One quadrant of a development-set photo with its labels.
 pub struct Patch {
@@ -125,4 +138,131 @@ pub fn augment(s: &[f32], n: usize, scale: f32, u: &dyn Fn(u32) -> f32) -> Vec<f
             t.powf(gamma)
         })
         .collect()
+}
+
+/// Rotation-invariant features: per (part, frequency) the log mean energy over orientations
+/// and the magnitudes of the orientation profile's harmonics relative to its mean; then the
+/// quantiles.
+#[allow(dead_code)] // the retrieval laboratory describes, it does not classify
+pub fn features(d: &Descriptor, harmonics: usize) -> Vec<f64> {
+    let block = ORIENTATIONS * FREQUENCIES;
+    let mut out = Vec::new();
+    for part in 0..2 {
+        for k in 0..FREQUENCIES {
+            let e: Vec<f64> = (0..ORIENTATIONS)
+                .map(|o| d.0[part * block + o * FREQUENCIES + k] as f64)
+                .collect();
+            let t = e.iter().sum::<f64>() / ORIENTATIONS as f64;
+            out.push((t + 1e-4).ln());
+            for h in 1..=harmonics {
+                let (mut re, mut im) = (0.0, 0.0);
+                for (o, v) in e.iter().enumerate() {
+                    let a = std::f64::consts::TAU * (h * o) as f64 / ORIENTATIONS as f64;
+                    re += v * a.cos();
+                    im += v * a.sin();
+                }
+                out.push((re * re + im * im).sqrt() / ORIENTATIONS as f64 / (t + 1e-4));
+            }
+        }
+    }
+    for i in 0..QUANTILES {
+        out.push(d.0[2 * block + i] as f64);
+    }
+    out
+}
+
+/// `measure` of the 128² maps of `per_kind` database patterns per family, each clean and
+/// `copies` times photo-like ([`augment`]), with the family's index in `PatternKind::ALL`.
+#[allow(dead_code)] // the retrieval laboratory uses the shipped database instead
+pub fn training_maps<T: Send>(
+    per_kind: usize,
+    copies: usize,
+    measure: &(dyn Fn(&[f32]) -> T + Sync),
+) -> Vec<(T, usize)> {
+    use rayon::prelude::*;
+    let tile = Tile::new_2d(1);
+    let jobs: Vec<(usize, usize, usize)> = (0..PatternKind::ALL.len())
+        .flat_map(|c| (0..per_kind).flat_map(move |i| (0..=copies).map(move |a| (c, i, a))))
+        .collect();
+    jobs.par_iter()
+        .map(|&(c, i, a)| {
+            let pattern = sample(PatternKind::ALL[c], i * 7);
+            let n = SIZE;
+            let s = structure_image(&pattern, 1, &tile, n as u32, n as u32);
+            let map = if a == 0 {
+                s
+            } else {
+                let key = ((c as u32) << 24) ^ ((i as u32) << 8) ^ (a as u32) << 2;
+                let u = |j: u32| {
+                    rng::uniform(7, 0x6175_6775, key.wrapping_mul(65_537).wrapping_add(j)) as f32
+                };
+                augment(&s, n, pattern.scale, &u)
+            };
+            (measure(&map), c)
+        })
+        .collect()
+}
+
+/// The laboratories' score of one way of ordering the families: structured patches with a
+/// labelled family first and in the top three (per hash fold of 4), stochastic patches whose
+/// first family is a noise-like one, and the confusion of the first choice.
+#[derive(Default)]
+#[allow(dead_code)] // the retrieval laboratory keeps its own counts of nearest families
+pub struct Tally {
+    first: usize,
+    top3: usize,
+    structured: usize,
+    folds: [(usize, usize); 4],
+    noise_like: usize,
+    stochastic: usize,
+    confusion: std::collections::BTreeMap<(String, String), usize>,
+}
+
+#[allow(dead_code)]
+impl Tally {
+    /// Counts one patch whose families, best first, are `order` (names).
+    pub fn add(&mut self, file: &str, structured: bool, labels: &[String], order: &[&str]) {
+        let labelled = |r: usize| labels.iter().any(|l| l == order[r]);
+        if structured {
+            let first = labelled(0);
+            self.structured += 1;
+            self.first += first as usize;
+            self.top3 += (0..3).any(labelled) as usize;
+            let k = proctex::devset::fold_of(file, 4);
+            self.folds[k].0 += first as usize;
+            self.folds[k].1 += 1;
+            *self
+                .confusion
+                .entry((labels[0].clone(), order[0].to_string()))
+                .or_default() += 1;
+        } else {
+            self.stochastic += 1;
+            self.noise_like += ["perlin", "turbulence", "ridged"].contains(&order[0]) as usize;
+        }
+    }
+
+    /// One line of counts (and the confusion when `VERBOSE` is set).
+    pub fn line(&self) -> String {
+        let mut s = format!(
+            "structured first {}/{n} top3 {}/{n} folds {:?} stochastic→noise-like {}/{}",
+            self.first,
+            self.top3,
+            self.folds,
+            self.noise_like,
+            self.stochastic,
+            n = self.structured
+        );
+        if std::env::var("VERBOSE").is_ok() {
+            s += &format!("\n  {:?}", self.confusion);
+        }
+        s
+    }
+}
+
+/// Families ordered by `scores` (lower first), as names.
+#[allow(dead_code)]
+pub fn ordered(scores: &[f64]) -> Vec<&'static str> {
+    let mut order: Vec<usize> = (0..scores.len()).collect();
+    order.sort_by(|&x, &y| scores[x].total_cmp(&scores[y]));
+    order.iter().map(|&i| PatternKind::ALL[i].name()).collect()
 }
