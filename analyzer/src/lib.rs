@@ -38,6 +38,11 @@ pub mod specks;
 pub mod analyze;
 pub mod spectrum;
 
+// Layer: raster synthesis from the photo itself (Heeger & Bergen: steerable pyramid,
+// subband histograms).
+pub mod heeger_bergen;
+pub mod pyramid;
+
 // Layer: descriptors and distances of structure (two-tone map, Gabor bank, database).
 pub mod cues;
 pub mod db;

@@ -39,6 +39,7 @@ fn help_everywhere() {
         vec!["analyze", "--help"],
         vec!["render", "--help"],
         vec!["synth", "--help"],
+        vec!["pyramid", "--help"],
         vec!["evaluate", "--help"],
         vec!["fidelity", "--help"],
         vec!["morph", "--help"],
@@ -170,6 +171,10 @@ fn bad_input_exits_1_with_a_message() {
             e.starts_with("proctex: ") && !e.contains("panicked"),
             "{f}: {e}"
         );
+        // The pyramid synthesis reads photos the same way and says the same.
+        let o = proctex(&["pyramid", &bad(f), "-o", &tmp("bad.png")]);
+        assert_eq!(o.status.code(), Some(1), "pyramid {f}");
+        assert_eq!(stderr(&o), e, "pyramid {f}");
     }
     let o = proctex(&["analyze", "/nonexistent/photo.png"]);
     assert_eq!(o.status.code(), Some(1));
@@ -316,6 +321,10 @@ fn bad_usage_exits_2() {
         vec!["fidelity", "--set", "d", "--fold", "x"],
         vec!["fidelity", "x.png", "--fold", "0/4"],
         vec!["fidelity", "--set", "d", "x.png"],
+        vec!["pyramid", "x.png"],
+        vec!["pyramid", "x.png", "-o", "y.jpg"],
+        vec!["pyramid", "x.png", "-o", "y.png", "--iterations", "nan"],
+        vec!["pyramid", "x.png", "-o", "y.png", "--wat"],
     ] {
         let o = proctex(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
@@ -451,4 +460,48 @@ fn export_prints_json_wgsl_and_glsl() {
             .code(),
         Some(1)
     );
+}
+
+#[test]
+fn pyramid_writes_a_texture_of_any_size_and_refuses_bad_options() {
+    let photo = sample("stk_blackrock_256.png");
+    let (a, b) = (tmp("hb-a.png"), tmp("hb-b.png"));
+    let o = proctex(&["pyramid", &photo, "-o", &a, "--iterations", "2"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("256×256"), "{}", stdout(&o));
+    let o = proctex(&["pyramid", &photo, "-o", &b, "--iterations", "2"]);
+    assert!(o.status.success());
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    let o = proctex(&[
+        "pyramid",
+        &photo,
+        "-o",
+        &b,
+        "--width",
+        "150",
+        "--height",
+        "90",
+        "--seed",
+        "3",
+        "--crop",
+        "0,0,128,128",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = proctex::input::Photo::decode(&std::fs::read(&b).unwrap()).unwrap();
+    assert_eq!((img.width, img.height), (150, 90));
+    for (flag, value, words) in [
+        ("--orientations", "0", "--orientations 0"),
+        ("--scales", "40", "--scales 40"),
+        ("--width", "8", "at least 32"),
+    ] {
+        let o = proctex(&["pyramid", &photo, "-o", &b, flag, value]);
+        assert_eq!(o.status.code(), Some(2), "{flag} {value}: {}", stderr(&o));
+        assert!(stderr(&o).contains(words), "{}", stderr(&o));
+    }
+    // Too large an output is bad input (1), as a too large render is.
+    let o = proctex(&[
+        "pyramid", &photo, "-o", &b, "--width", "8000", "--height", "8000",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("over the limit"), "{}", stderr(&o));
 }

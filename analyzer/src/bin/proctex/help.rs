@@ -10,6 +10,7 @@ COMMANDS:
     analyze   PHOTO → params JSON
     render    params JSON → PNG (CPU reference renderer)
     synth     PHOTO → analysed texture rendered at exactly the photo's pixel size
+    pyramid   PHOTO → raster texture by Heeger & Bergen's pyramid synthesis (any size, tiles)
     evaluate  texture distances between two images
     fidelity  synthesis-vs-photo distance ratios (README, Results)
     morph     params JSON files → the texture a fraction t of the way through them
@@ -19,7 +20,8 @@ COMMANDS:
 
 OPTIONS FOR EVERY COMMAND:
     --max-pixels N   the most pixels a photo or a render may have (default: 50 MP for a photo,
-                     8192×8192 for a render; a side is at most 16384 either way)
+                     8192×8192 for a render, 4096×4096 for a pyramid synthesis; a side is at
+                     most 16384 either way)
 
 Files over 256 MiB are refused unread.
 
@@ -80,6 +82,21 @@ proctex synth PHOTO -o OUT.png [--model M] [--seed S] [analyze OPTIONS]
 Analyses PHOTO with the model chosen as `analyze` does (--model auto by default; prints the
 ranking and the model) and renders the texture at exactly PHOTO's pixel size (or the crop's),
 at the photo's scale. Accepts the options of `analyze`.";
+
+pub const PYRAMID_HELP: &str = "\
+proctex pyramid PHOTO -o OUT.png [--width W --height H] [--iterations N] [--scales S]
+                [--orientations K] [--seed S] [--crop X,Y,W,H]
+
+Synthesises a raster texture like PHOTO (or the crop) with Heeger & Bergen's pyramid-based
+synthesis (1995): noise whose every steerable-pyramid subband, both residuals included, is
+matched to PHOTO's histogram in turn, N times; colours decorrelated by PCA, then each RGB
+channel matched to PHOTO's. The output tiles seamlessly and may have any size.
+
+    --width W, --height H   output size (default: PHOTO's or the crop's)
+    --iterations N          rounds of the loop (default 5, at most 100)
+    --scales S              pyramid scales (default 4; fewer where PHOTO or the output is small)
+    --orientations K        orientations per scale (default 4, at most 16)
+    --seed S                seed of the starting noise (default 1)";
 
 pub const EVALUATE_HELP: &str = "\
 proctex evaluate A.png B.png [--json]

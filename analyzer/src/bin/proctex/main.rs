@@ -5,6 +5,7 @@ mod args;
 mod fidelity;
 mod files;
 mod help;
+mod pyramid;
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -27,7 +28,7 @@ use proctex::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model
 use proctex::spectrum::Estimator;
 use proctex::{Error, Result};
 
-fn write_png(path: &str, img: &Image, depth16: bool) -> Result<()> {
+pub(crate) fn write_png(path: &str, img: &Image, depth16: bool) -> Result<()> {
     let io = |e: image::ImageError| Error::Io {
         path: path.into(),
         message: e.to_string(),
@@ -682,6 +683,7 @@ fn main() -> ExitCode {
         "analyze" => cmd_analyze(args),
         "render" => cmd_render(args),
         "synth" => cmd_synth(args),
+        "pyramid" => pyramid::cmd_pyramid(args),
         "evaluate" => cmd_evaluate(args),
         "fidelity" => fidelity::cmd_fidelity(args),
         "morph" => cmd_morph(args),

@@ -1,0 +1,351 @@
+//! Pyramid-based texture synthesis (Heeger & Bergen 1995): a raster texture from the photo
+//! itself, whose every steerable-pyramid subband ([`crate::pyramid`]) has the photo's
+//! histogram. The companion of the procedural model (shown beside it, as Lagae Fig. 16 does).
+//!
+//! The loop is the paper's (§3): start from white noise matched to the sample's histogram;
+//! each iteration analyses the output, matches the histogram of every subband (both residuals
+//! included) to the sample's, reconstructs, and matches the image histogram again.
+//!
+//! Colour follows the IPOL implementation (Briand, Vacher, Galerne & Rabin 2014), with the
+//! colour code of the noise model: the sample's periodic component (Moisan's periodic + smooth
+//! decomposition, [`crate::spectrum::spectrum_real`]) so that its borders do not add a cross of
+//! spurious energy, PCA decorrelation ([`crate::colour::pca`], the noise model's), one synthesis
+//! per decorrelated channel, rotation back, and a final match of each RGB channel. One
+//! departure: the final match is to the photo's own RGB values, not to the periodic
+//! component's (which carry the smooth component's correction near the borders, not the
+//! material's colours); the periodic component is what every subband statistic comes from.
+//!
+//! Histogram matching is exact, by sorting with quantile interpolation
+//! ([`match_histogram`]), so the output may have any size, not only multiples of the sample's.
+//! Every operation is circular or per pixel, so the output tiles seamlessly; it is seeded and
+//! deterministic (native runs the three channels in parallel, each alone, so the bits do not
+//! depend on the threads).
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use rustfft::num_complex::Complex32;
+
+use crate::colour::pca;
+use crate::error::{Error, Result};
+use crate::input::{MIN_SIDE, Photo};
+use crate::limits;
+use crate::pyramid::{MAX_ORIENTATIONS, Plan, max_scales};
+use crate::radix;
+use crate::rng;
+use crate::spectrum::{ifft2, spectrum_real};
+
+/// The paper's iteration count ("about 5 iterations").
+pub const DEFAULT_ITERATIONS: u32 = 5;
+/// Scales of the pyramid (fewer where the sample or the output is small).
+pub const DEFAULT_SCALES: u32 = 4;
+/// Orientations of the pyramid.
+pub const DEFAULT_ORIENTATIONS: u32 = 4;
+/// Most iterations one may ask for (the loop converges in a handful; more only costs time).
+pub const MAX_ITERATIONS: u32 = 100;
+/// Most scales one may ask for (a 16384² output supports 11).
+pub const MAX_SCALES: u32 = 12;
+
+/// What to synthesise.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RasterOptions {
+    /// Output width in pixels.
+    pub width: u32,
+    /// Output height in pixels.
+    pub height: u32,
+    /// Iterations of the loop.
+    pub iterations: u32,
+    /// Scales requested (at most what the sample and the output support).
+    pub scales: u32,
+    /// Orientations.
+    pub orientations: u32,
+    /// Seed of the starting noise.
+    pub seed: u32,
+}
+
+impl RasterOptions {
+    /// The defaults for an output of `width × height`.
+    pub fn new(width: u32, height: u32) -> RasterOptions {
+        RasterOptions {
+            width,
+            height,
+            iterations: DEFAULT_ITERATIONS,
+            scales: DEFAULT_SCALES,
+            orientations: DEFAULT_ORIENTATIONS,
+            seed: 1,
+        }
+    }
+
+    /// Refuses options out of range, saying which and what is allowed; an output over
+    /// `max_pixels` is refused with `past` (how to go past the limit).
+    pub fn validate(&self, max_pixels: u64, past: &str) -> Result<()> {
+        if self.width < MIN_SIDE || self.height < MIN_SIDE {
+            return Err(Error::Option(format!(
+                "the synthesis would be {}×{} pixels; each side must be at least {MIN_SIDE}",
+                self.width, self.height
+            )));
+        }
+        limits::check_pixels(
+            "the synthesis",
+            self.width as u64,
+            self.height as u64,
+            max_pixels,
+            past,
+        )?;
+        if self.iterations > MAX_ITERATIONS {
+            return Err(Error::Option(format!(
+                "--iterations {} is over {MAX_ITERATIONS}",
+                self.iterations
+            )));
+        }
+        if !(1..=MAX_SCALES).contains(&self.scales) {
+            return Err(Error::Option(format!(
+                "--scales {} is not between 1 and {MAX_SCALES}",
+                self.scales
+            )));
+        }
+        if !(1..=MAX_ORIENTATIONS as u32).contains(&self.orientations) {
+            return Err(Error::Option(format!(
+                "--orientations {} is not between 1 and {MAX_ORIENTATIONS}",
+                self.orientations
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Most pixels a synthesis may have by default: a pyramid of `w × h` holds about seven floats
+/// per pixel per channel, plus the complex spectra being filtered (about 1.5 GB at 4096²).
+pub const MAX_SYNTHESIS_PIXELS: u64 = 4096 * 4096;
+
+/// Rearranges `values` so that their histogram is `target_sorted`'s (any length), keeping
+/// their order: the value of rank `i` of `n` becomes the target's quantile `(i + ½)/n`,
+/// linearly interpolated between the target's sorted values (exact when the lengths are equal).
+/// Ties keep their positions' order (the sort is stable), so the result is deterministic.
+pub fn match_histogram(values: &mut [f32], target_sorted: &[f32]) {
+    let (n, m) = (values.len(), target_sorted.len());
+    if n == 0 || m == 0 {
+        return;
+    }
+    let order = radix::argsort(values);
+    for (rank, &i) in order.iter().enumerate() {
+        values[i as usize] = quantile(target_sorted, (rank as f64 + 0.5) / n as f64);
+    }
+}
+
+/// The `q` quantile of sorted values, `q·m − ½` interpolated between neighbours (clamped).
+pub fn quantile(sorted: &[f32], q: f64) -> f32 {
+    let m = sorted.len();
+    let t = (q * m as f64 - 0.5).clamp(0.0, (m - 1) as f64);
+    let i = t.floor() as usize;
+    let f = (t - i as f64) as f32;
+    if i + 1 < m {
+        sorted[i] + f * (sorted[i + 1] - sorted[i])
+    } else {
+        sorted[i]
+    }
+}
+
+fn sorted(v: &[f32]) -> Vec<f32> {
+    let mut s = v.to_vec();
+    radix::sort(&mut s);
+    s
+}
+
+/// What the loop matches for one channel of a sample: its sorted values and the sorted values
+/// of each of its subbands (in [`crate::pyramid::Pyramid::subbands`]'s order).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChannelTargets {
+    /// The channel's values, sorted.
+    pub pixels: Vec<f32>,
+    /// Each subband's values, sorted.
+    pub subbands: Vec<Vec<f32>>,
+}
+
+impl ChannelTargets {
+    /// The targets of `channel`, analysed with `plan` (the sample's size).
+    pub fn of(channel: &[f32], plan: &Plan) -> ChannelTargets {
+        ChannelTargets {
+            pixels: sorted(channel),
+            subbands: plan
+                .analyse(channel)
+                .subbands()
+                .map(|b| sorted(b))
+                .collect(),
+        }
+    }
+}
+
+/// One channel synthesised on `plan`'s grid from `targets` (made with the same scales and
+/// orientations): noise of `(seed, stream)` matched to the channel's histogram, then
+/// `iterations` rounds of the loop. `step()` is called after each round; `false` stops
+/// (returns `None`).
+pub fn synthesize_channel(
+    targets: &ChannelTargets,
+    plan: &Plan,
+    iterations: u32,
+    (seed, stream): (u32, u32),
+    step: &dyn Fn() -> bool,
+) -> Option<Vec<f32>> {
+    let (w, h) = plan.size();
+    let mut out: Vec<f32> = (0..w * h)
+        .map(|i| rng::gaussian(seed, stream, i as u32) as f32)
+        .collect();
+    match_histogram(&mut out, &targets.pixels);
+    for _ in 0..iterations {
+        let mut p = plan.analyse(&out);
+        for (band, target) in p.subbands_mut().zip(&targets.subbands) {
+            match_histogram(band, target);
+        }
+        out = plan.synthesise(&p);
+        match_histogram(&mut out, &targets.pixels);
+        if !step() {
+            return None;
+        }
+    }
+    Some(out)
+}
+
+/// The periodic component of a channel (Moisan's decomposition; the same mean).
+fn periodic_component(channel: &[f32], w: usize, h: usize) -> Vec<f32> {
+    let spec: Vec<Complex32> = spectrum_real(channel, w, h, true);
+    ifft2(spec, w, h).iter().map(|v| v.re).collect()
+}
+
+/// A sample prepared for synthesis: its colour axes and, per decorrelated channel, the
+/// targets; what a mixture of two samples interpolates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedSample {
+    /// Mean RGB of the periodic component.
+    pub mean: [f64; 3],
+    /// Rows: the principal colour axes (a rotation).
+    pub basis: [[f64; 3]; 3],
+    /// Targets of each decorrelated channel.
+    pub channels: [ChannelTargets; 3],
+    /// The photo's own RGB values per channel, sorted (the final colour match).
+    pub rgb: [Vec<f32>; 3],
+}
+
+/// Scales used for a sample of `sample` size and an output of `output` size.
+pub fn scales_for(sample: (usize, usize), output: (usize, usize), requested: u32) -> usize {
+    (requested as usize)
+        .min(max_scales(sample.0, sample.1))
+        .min(max_scales(output.0, output.1))
+}
+
+/// Prepares `photo` for synthesis with a pyramid of `scales` scales and `orientations`.
+pub fn prepare(photo: &Photo, scales: usize, orientations: usize) -> PreparedSample {
+    let (w, h) = (photo.width as usize, photo.height as usize);
+    let rgb: [Vec<f32>; 3] =
+        std::array::from_fn(|c| photo.pixels.iter().map(|p| p[c]).collect::<Vec<f32>>());
+    let periodic: [Vec<f32>; 3] = std::array::from_fn(|c| periodic_component(&rgb[c], w, h));
+    let pixels: Vec<[f32; 3]> = (0..w * h)
+        .map(|i| [periodic[0][i], periodic[1][i], periodic[2][i]])
+        .collect();
+    let colour = pca(&pixels);
+    let plan = Plan::new(w, h, scales, orientations);
+    let channels = std::array::from_fn(|j| {
+        let axis = colour.basis[j];
+        let values: Vec<f32> = pixels
+            .iter()
+            .map(|p| {
+                (0..3)
+                    .map(|k| axis[k] * (p[k] as f64 - colour.mean[k]))
+                    .sum::<f64>() as f32
+            })
+            .collect();
+        ChannelTargets::of(&values, &plan)
+    });
+    PreparedSample {
+        mean: colour.mean,
+        basis: colour.basis,
+        channels,
+        rgb: rgb.map(|v| sorted(&v)),
+    }
+}
+
+/// A texture like `photo`, of `opts`' size (at most [`MAX_SYNTHESIS_PIXELS`]). Errors on a
+/// photo or options out of range.
+pub fn synthesize(photo: &Photo, opts: &RasterOptions) -> Result<Photo> {
+    let limit = (MAX_SYNTHESIS_PIXELS, limits::PAST_THE_LIMIT);
+    Ok(synthesize_progress(photo, opts, limit, &|_, _| true)?.expect("never cancelled"))
+}
+
+/// [`synthesize`] with an output limit (`max_pixels`, and how to go past it), reporting
+/// `progress(done, total)` after each round of each channel; `false` cancels (then
+/// `Ok(None)`).
+pub fn synthesize_progress(
+    photo: &Photo,
+    opts: &RasterOptions,
+    (max_pixels, past): (u64, &str),
+    progress: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Result<Option<Photo>> {
+    photo.check_min_size()?;
+    opts.validate(max_pixels, past)?;
+    let sample = (photo.width as usize, photo.height as usize);
+    let output = (opts.width as usize, opts.height as usize);
+    let scales = scales_for(sample, output, opts.scales);
+    let prepared = prepare(photo, scales, opts.orientations as usize);
+    Ok(synthesize_prepared(
+        &prepared, output, scales, opts, progress,
+    ))
+}
+
+/// The synthesis of a prepared sample (its scales and orientations those of `opts`, capped
+/// by `scales`) on an output of `(width, height)`.
+pub fn synthesize_prepared(
+    sample: &PreparedSample,
+    (width, height): (usize, usize),
+    scales: usize,
+    opts: &RasterOptions,
+    progress: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Option<Photo> {
+    let plan = Plan::new(width, height, scales, opts.orientations as usize);
+    let total = 3 * opts.iterations as usize;
+    let done = AtomicUsize::new(0);
+    let cancelled = AtomicBool::new(false);
+    let step = || {
+        let d = done.fetch_add(1, Ordering::SeqCst) + 1;
+        let go = !cancelled.load(Ordering::SeqCst) && progress(d, total);
+        if !go {
+            cancelled.store(true, Ordering::SeqCst);
+        }
+        go
+    };
+    let channels: Vec<Option<Vec<f32>>> = crate::parallel::map_in_order(&[0u32, 1, 2], |&j| {
+        synthesize_channel(
+            &sample.channels[j as usize],
+            &plan,
+            opts.iterations,
+            (opts.seed, 0x4842_0000 + j),
+            &step,
+        )
+    });
+    if cancelled.load(Ordering::SeqCst) {
+        return None;
+    }
+    let channels: Vec<Vec<f32>> = channels.into_iter().collect::<Option<_>>()?;
+    // Back to RGB, then each RGB channel matched to the photo's own.
+    let mut rgb: [Vec<f32>; 3] = std::array::from_fn(|c| {
+        (0..width * height)
+            .map(|i| {
+                let v: f64 = (0..3)
+                    .map(|j| channels[j][i] as f64 * sample.basis[j][c])
+                    .sum();
+                (v + sample.mean[c]) as f32
+            })
+            .collect()
+    });
+    for (channel, target) in rgb.iter_mut().zip(&sample.rgb) {
+        match_histogram(channel, target);
+    }
+    Some(Photo {
+        width: width as u32,
+        height: height as u32,
+        pixels: (0..width * height)
+            .map(|i| std::array::from_fn(|c| rgb[c][i].clamp(0.0, 1.0)))
+            .collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,136 @@
+use super::*;
+use crate::render::Image;
+use crate::seamless::seam_stats;
+
+/// A colour test texture that is not periodic on its grid: oriented stripes at a scale the
+/// pyramid resolves, blobs, grain and a gradient, in three correlated colours.
+fn sample(w: u32, h: u32) -> Photo {
+    let pixels = (0..w * h)
+        .map(|i| {
+            let (x, y) = ((i % w) as f32, (i / w) as f32);
+            let stripes = (0.45 * x + 0.2 * y).sin();
+            let blobs = (0.07 * x).sin() * (0.09 * y + 1.0).cos();
+            let grain = rng::gaussian(3, 5, i) as f32;
+            let v = 0.5 + 0.18 * stripes + 0.12 * blobs + 0.05 * grain + 0.001 * x;
+            [v, 0.8 * v + 0.05 * blobs, 0.6 * v - 0.04 * stripes].map(|c| c.clamp(0.0, 1.0))
+        })
+        .collect();
+    Photo {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
+
+#[test]
+fn histogram_matching_is_exact_for_equal_lengths_and_keeps_the_order() {
+    let mut v: Vec<f32> = (0..1000).map(|i| rng::gaussian(1, 2, i) as f32).collect();
+    let before = v.clone();
+    let target: Vec<f32> = (0..1000).map(|i| (i as f32 / 999.0).powi(3)).collect();
+    match_histogram(&mut v, &target);
+    assert_eq!(sorted(&v), target);
+    for i in 0..1000 {
+        for j in [i + 1, i + 7].into_iter().filter(|&j| j < 1000) {
+            assert_eq!(before[i] < before[j], v[i] < v[j]);
+        }
+    }
+    // Another length: the quantiles of the target, interpolated.
+    let mut short: Vec<f32> = (0..10).map(|i| i as f32).collect();
+    match_histogram(&mut short, &target);
+    for (i, s) in short.iter().enumerate() {
+        let q = (i as f64 + 0.5) / 10.0;
+        assert!((s - (q as f32).powi(3)).abs() < 2e-3, "{i}: {s}");
+    }
+}
+
+/// The output tiles: its wrap-around seams are like its interior neighbours (ratio near 1),
+/// where the sample's own seams are not.
+#[test]
+fn output_tiles_seamlessly() {
+    let photo = sample(128, 128);
+    let out = synthesize(&photo, &RasterOptions::new(128, 128)).unwrap();
+    let as_image = |p: &Photo| Image {
+        width: p.width,
+        height: p.height,
+        pixels: p.pixels.clone(),
+    };
+    for s in seam_stats(&as_image(&out)) {
+        assert!((0.7..1.3).contains(&s.ratio()), "{}", s.ratio());
+    }
+    let own = seam_stats(&as_image(&photo));
+    assert!(own.iter().any(|s| s.ratio() > 1.5), "{}", own[0].ratio());
+}
+
+#[test]
+fn deterministic_any_size_and_the_photo_colours() {
+    let photo = sample(64, 64);
+    let opts = RasterOptions {
+        iterations: 2,
+        ..RasterOptions::new(100, 70)
+    };
+    let a = synthesize(&photo, &opts).unwrap();
+    let b = synthesize(&photo, &opts).unwrap();
+    assert_eq!(a, b);
+    assert_eq!((a.width, a.height), (100, 70));
+    let c = synthesize(&photo, &RasterOptions { seed: 2, ..opts }).unwrap();
+    assert_ne!(a, c);
+    // Each RGB channel has the photo's distribution (quantiles within a 255th).
+    for ch in 0..3 {
+        let mine = sorted(&a.pixels.iter().map(|p| p[ch]).collect::<Vec<_>>());
+        let theirs = sorted(&photo.pixels.iter().map(|p| p[ch]).collect::<Vec<_>>());
+        for d in 1..20 {
+            let q = d as f64 / 20.0;
+            assert!((quantile(&mine, q) - quantile(&theirs, q)).abs() < 1.0 / 255.0);
+        }
+    }
+}
+
+#[test]
+fn cancel_stops_the_loop() {
+    let photo = sample(64, 64);
+    let calls = AtomicUsize::new(0);
+    let limit = (MAX_SYNTHESIS_PIXELS, "");
+    let out = synthesize_progress(&photo, &RasterOptions::new(64, 64), limit, &|_, _| {
+        calls.fetch_add(1, Ordering::SeqCst) < 2
+    })
+    .unwrap();
+    assert!(out.is_none());
+    assert!(calls.load(Ordering::SeqCst) < 3 * DEFAULT_ITERATIONS as usize);
+}
+
+#[test]
+fn bad_input_is_refused_in_words() {
+    let small = sample(20, 40);
+    let e = synthesize(&small, &RasterOptions::new(64, 64)).unwrap_err();
+    assert!(matches!(e, Error::TooSmall { .. }), "{e}");
+    let photo = sample(64, 64);
+    for (opts, words) in [
+        (RasterOptions::new(16, 64), "at least 32"),
+        (RasterOptions::new(20_000, 64), "a side may be at most"),
+        (RasterOptions::new(8192, 8192), "over the limit"),
+        (
+            RasterOptions {
+                orientations: 0,
+                ..RasterOptions::new(64, 64)
+            },
+            "--orientations 0",
+        ),
+        (
+            RasterOptions {
+                scales: 0,
+                ..RasterOptions::new(64, 64)
+            },
+            "--scales 0",
+        ),
+        (
+            RasterOptions {
+                iterations: 1000,
+                ..RasterOptions::new(64, 64)
+            },
+            "--iterations 1000",
+        ),
+    ] {
+        let e = synthesize(&photo, &opts).unwrap_err().to_string();
+        assert!(e.contains(words), "{e}");
+    }
+}
