@@ -137,6 +137,7 @@ step "benchmark: analyzer, $PROCTEX_BENCH (ratios within one run; not a pass/fai
 # --workspace: the same feature set as cargo test's build, so its artefacts serve (with -p the
 # dependencies were built again for the analyzer's features alone: 1 min 20 s).
 cargo bench --workspace --bench analysis -- "${bench_args[@]}"
+cargo bench --workspace --bench pyramid -- "${bench_args[@]}"
 
 step "benchmark: browser app, $PROCTEX_BENCH (ratios within one run; not a pass/fail test)"
 (cd e2e && npx playwright test --config bench.config.js) 2>&1 | grep -v -e '^\[WebServer\]' -e '^\[page\]'

@@ -54,6 +54,11 @@ worker.onmessage = (e) => {
     }
     return;
   }
+  // The Heeger–Bergen synthesis' rounds (its result resolves the job below).
+  if (m.type === 'pyramidProgress') {
+    if (m.id === pyramidJob && appRunning) wasm.pyramidProgress(m.done, m.total);
+    return;
+  }
   const resolve = pending.get(m.id);
   pending.delete(m.id);
   if (resolve) resolve(m);
@@ -68,6 +73,35 @@ function job(msg, transfer = []) {
 }
 
 let appRunning = false;
+let pyramidJob = 0; // the Heeger–Bergen synthesis the app waits for (0: none)
+
+// The Heeger–Bergen synthesis of crop [x, y, w, h] of the current photo, for the app's
+// pyramid view; a new one supersedes the one running (which is cancelled).
+async function synthesisePyramid(x, y, w, h, seed) {
+  if (pyramidJob) worker.postMessage({ type: 'cancelPyramid' });
+  const [id, reply] = job({ type: 'pyramid', crop: [x, y, w, h], seed });
+  pyramidJob = id;
+  const m = await reply;
+  if (m.id !== pyramidJob) return;
+  pyramidJob = 0;
+  if (m.type === 'error') wasm.pyramidFailed(m.message);
+  else if (m.cancelled) wasm.pyramidCancelled();
+  else wasm.pyramidDone(m.rgba, m.width, m.height, m.ms);
+}
+
+// An RGBA8 image as a PNG download (the canvas encodes it losslessly: every alpha is 255).
+async function downloadPng(name, rgba, width, height) {
+  const canvas = new OffscreenCanvas(width, height);
+  canvas.getContext('2d').putImageData(
+    new ImageData(new Uint8ClampedArray(rgba.buffer, rgba.byteOffset, rgba.length), width, height), 0, 0);
+  const blob = await canvas.convertToBlob({ type: 'image/png' });
+  window.proctex.lastPng = { name, bytes: blob.size, width, height };
+  const url = URL.createObjectURL(blob);
+  const a = document.createElement('a');
+  a.href = url; a.download = name;
+  document.body.appendChild(a); a.click(); a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 60_000);
+}
 function reportError(text) {
   if (appRunning) wasm.reportError(text);
   else if (fallback) fallback.showError(text);
@@ -417,6 +451,11 @@ window.proctexHost = {
     if (m.type === 'error' && suggestJob === id) wasm.suggestionsFailed(m.message);
   },
   cancelSuggestions: () => worker.postMessage({ type: 'cancelSuggest' }),
+  synthesisePyramid: (x, y, w, h, seed) => { synthesisePyramid(x, y, w, h, seed); },
+  cancelPyramid: () => worker.postMessage({ type: 'cancelPyramid' }),
+  downloadPng: (name, rgba, width, height) => {
+    downloadPng(name, rgba, width, height).catch((e) => wasm.reportError(`PNG: ${e}`));
+  },
   // The refinement's time budget in seconds (0: none), for the running refinement and the next.
   setRefineBudget: (seconds) => worker.postMessage({ type: 'setRefineBudget', seconds }),
   downloadText,

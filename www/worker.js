@@ -1,8 +1,9 @@
-// The analysis worker. It loads the same wasm as the page (only its pure functions: analyzeRgba,
-// Suggestions, modelStats, previewRgba) and does everything that takes long: decoding a photo
-// file, analysing it (or a crop of it), the automatic model choice (retrieval in the pattern
+// The analysis worker. It loads the worker's wasm (analyzeRgba, Suggestions, PyramidSynthesis,
+// modelStats, previewRgba) and does everything that takes long: decoding a photo file,
+// analysing it (or a crop of it), the automatic model choice (retrieval in the pattern
 // database, then refinement one model family per step, shared with helper workers on machines
-// with more cores: refiner.js), the model statistics for the plots, and the CPU preview.
+// with more cores: refiner.js), the Heeger–Bergen raster synthesis of the crop (one round per
+// step), the model statistics for the plots, and the CPU preview.
 //
 // Why a worker rather than splitting the work into slices on the UI thread: the expensive steps
 // are single calls (the browser's image decode of a 12 MP JPEG, rustfft over the analysis
@@ -339,6 +340,38 @@ async function handle(m) {
       postMessage({ type: 'preview', id: m.id, rgba, ms: performance.now() - t0 }, [rgba.buffer]);
       return;
     }
+    case 'pyramid': {
+      // The Heeger–Bergen synthesis of the current photo's crop, one round per macrotask, so
+      // that Cancel ('cancelPyramid', not queued) gets in between rounds.
+      if (!photo) throw new Error('no photo to synthesise from');
+      const job = new wasm.PyramidSynthesis(photo.rgba, photo.width, photo.height,
+        new Uint32Array(m.crop), m.seed);
+      pyramid = { id: m.id, cancelled: false };
+      const mine = pyramid;
+      try {
+        postMessage({ type: 'pyramidProgress', id: m.id, done: 0, total: job.steps() });
+        let more = job.steps() > 0;
+        while (more) {
+          await new Promise((r) => setTimeout(r, 0));
+          if (mine.cancelled) {
+            postMessage({ type: 'pyramid', id: m.id, cancelled: true });
+            return;
+          }
+          more = job.step();
+          postMessage({ type: 'pyramidProgress', id: m.id, done: job.done(), total: job.steps() });
+        }
+        const [width, height] = job.size();
+        const rgba = job.rgba();
+        postMessage({
+          type: 'pyramid', id: m.id, cancelled: false, rgba, width, height,
+          ms: performance.now() - t0,
+        }, [rgba.buffer]);
+      } finally {
+        job.free();
+        if (pyramid === mine) pyramid = null;
+      }
+      return;
+    }
     case 'benchRetrieval': {
       // e2e/bench: median milliseconds of each retrieval stage over `reps` runs.
       await dbReady;
@@ -361,6 +394,9 @@ async function handle(m) {
   }
 }
 
+// The running pyramid synthesis ({ id, cancelled }), for 'cancelPyramid'.
+let pyramid = null;
+
 // Jobs run one at a time, in order.
 let queue = Promise.resolve();
 onmessage = (e) => {
@@ -378,6 +414,11 @@ onmessage = (e) => {
   if (m.type === 'setRefineBudget') {
     refineBudgetMs = Math.max(0, Number(m.seconds) || 0) * 1000;
     if (suggestion) armBudget(suggestion);
+    return;
+  }
+  if (m.type === 'cancelPyramid') {
+    // Not queued: the running synthesis sees it before its next round.
+    if (pyramid) pyramid.cancelled = true;
     return;
   }
   if (m.type === 'cancelSuggest') {

@@ -20,8 +20,12 @@
 //! rebuilds the whole database already), the size that of the shipped file (which that test
 //! checks is the build's). Every line and ratio is printed in both modes.
 
+mod common;
+
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Instant;
+
+use common::{median_time, ms};
 
 use proctex::analyze::{Options, analyze_photo};
 use proctex::db::{DB_SEED, Db, describe_pattern, query, sample as db_sample, samples};
@@ -33,19 +37,6 @@ use proctex::render::{Prepared, View, render, render_prepared, tile_for};
 use proctex::retrieve::{Refinement, Suggester, suggest_with};
 use proctex::spectrum::fft2_real;
 use proctex::two_tone::two_tone;
-
-fn median_time(reps: usize, mut f: impl FnMut()) -> Duration {
-    f(); // warm-up: FFT plans, caches
-    let mut t: Vec<Duration> = (0..reps)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed()
-        })
-        .collect();
-    t.sort();
-    t[reps / 2]
-}
 
 fn photo_of_size(size: u32) -> Photo {
     // A real texture at the requested size: the sample photo itself at 512, and its analysed
@@ -180,10 +171,6 @@ fn full_analysis(reps: usize) {
 fn sample(name: &str) -> Photo {
     let path = format!("{}/../www/samples/{name}", env!("CARGO_MANIFEST_DIR"));
     Photo::decode(&std::fs::read(path).expect("sample")).expect("decodes")
-}
-
-fn ms(d: Duration) -> f64 {
-    d.as_secs_f64() * 1e3
 }
 
 fn retrieval(single: &rayon::ThreadPool, reps: usize) {

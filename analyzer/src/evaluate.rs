@@ -7,6 +7,7 @@ use crate::analyze::{Analysis, Options};
 use crate::colour::pca;
 use crate::distance::{Distances, distances};
 use crate::error::Result;
+use crate::heeger_bergen::RasterOptions;
 use crate::input::{Crop, Photo};
 use crate::render::{View, render};
 use crate::retrieve::{ModelChoice, Refinement, Suggestion, analyze_photo_model_progress};
@@ -267,6 +268,17 @@ pub struct SynthesisRun<'a> {
     pub synthesis: &'a Photo,
 }
 
+/// What makes the syntheses of the fidelity protocol.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Synthesiser {
+    /// A procedural model: analysed with this choice and refinement, rendered at the patch's
+    /// pixel size.
+    Model(ModelChoice, Refinement),
+    /// The Heeger–Bergen raster synthesis from the patch itself, of the patch's size (the
+    /// options' size and seed are set per synthesis).
+    Pyramid(RasterOptions),
+}
+
 /// [`fidelity`], reporting every synthesis to `observe` as it is made (which model each source
 /// patch got, how long its analysis took): what the development-set yardstick tabulates.
 pub fn fidelity_observed(
@@ -274,6 +286,23 @@ pub fn fidelity_observed(
     opts: &Options,
     choice: ModelChoice,
     refinement: Refinement,
+    seeds: &[u32],
+    observe: &mut dyn FnMut(SynthesisRun),
+) -> Result<Fidelity> {
+    fidelity_by(
+        photo,
+        opts,
+        Synthesiser::Model(choice, refinement),
+        seeds,
+        observe,
+    )
+}
+
+/// The fidelity protocol with any [`Synthesiser`].
+pub fn fidelity_by(
+    photo: &Photo,
+    opts: &Options,
+    synthesiser: Synthesiser,
     seeds: &[u32],
     observe: &mut dyn FnMut(SynthesisRun),
 ) -> Result<Fidelity> {
@@ -291,10 +320,26 @@ pub fn fidelity_observed(
             let o = Options { seed, ..*opts };
             for (di, (src, other)) in [(a, b), (b, a)].into_iter().enumerate() {
                 let start = std::time::Instant::now();
-                let (analysis, ranking) =
-                    analyze_photo_model_progress(src, &o, choice, refinement, &|_, _| true)?;
-                let analysis_ms = start.elapsed().as_secs_f64() * 1000.0;
-                let syn = render_at_photo_size(&analysis, src);
+                let (syn, ranking, analysis_ms) = match synthesiser {
+                    Synthesiser::Model(choice, refinement) => {
+                        let (analysis, ranking) =
+                            analyze_photo_model_progress(src, &o, choice, refinement, &|_, _| {
+                                true
+                            })?;
+                        let ms = start.elapsed().as_secs_f64() * 1000.0;
+                        (render_at_photo_size(&analysis, src), ranking, ms)
+                    }
+                    Synthesiser::Pyramid(raster) => {
+                        let raster = RasterOptions {
+                            width: src.width,
+                            height: src.height,
+                            seed,
+                            ..raster
+                        };
+                        let syn = crate::heeger_bergen::synthesize(src, &raster)?;
+                        (syn, Vec::new(), start.elapsed().as_secs_f64() * 1000.0)
+                    }
+                };
                 let d = distances(&syn, other);
                 observe(SynthesisRun {
                     patch: 2 * pi + di,

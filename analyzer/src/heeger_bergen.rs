@@ -175,29 +175,44 @@ impl ChannelTargets {
     }
 }
 
-/// One channel synthesised on `plan`'s grid from `targets` (made with the same scales and
-/// orientations): noise of `(seed, stream)` matched to the channel's histogram, then
-/// `iterations` rounds of the loop. `step()` is called after each round; `false` stops
-/// (returns `None`).
-pub fn synthesize_channel(
+/// The loop's starting point for one channel on `plan`'s grid: white noise of
+/// `(seed, stream)` matched to the channel's histogram.
+pub fn start_channel(
     targets: &ChannelTargets,
     plan: &Plan,
-    iterations: u32,
     (seed, stream): (u32, u32),
-    step: &dyn Fn() -> bool,
-) -> Option<Vec<f32>> {
+) -> Vec<f32> {
     let (w, h) = plan.size();
     let mut out: Vec<f32> = (0..w * h)
         .map(|i| rng::gaussian(seed, stream, i as u32) as f32)
         .collect();
     match_histogram(&mut out, &targets.pixels);
+    out
+}
+
+/// One round of the loop: analyse, match every subband, reconstruct, match the histogram.
+pub fn round(targets: &ChannelTargets, plan: &Plan, channel: &mut Vec<f32>) {
+    let mut p = plan.analyse(channel);
+    for (band, target) in p.subbands_mut().zip(&targets.subbands) {
+        match_histogram(band, target);
+    }
+    *channel = plan.synthesise(&p);
+    match_histogram(channel, &targets.pixels);
+}
+
+/// One channel synthesised on `plan`'s grid from `targets` (made with the same scales and
+/// orientations): [`start_channel`], then `iterations` [`round`]s. `step()` is called after
+/// each round; `false` stops (returns `None`).
+pub fn synthesize_channel(
+    targets: &ChannelTargets,
+    plan: &Plan,
+    iterations: u32,
+    noise: (u32, u32),
+    step: &dyn Fn() -> bool,
+) -> Option<Vec<f32>> {
+    let mut out = start_channel(targets, plan, noise);
     for _ in 0..iterations {
-        let mut p = plan.analyse(&out);
-        for (band, target) in p.subbands_mut().zip(&targets.subbands) {
-            match_histogram(band, target);
-        }
-        out = plan.synthesise(&p);
-        match_histogram(&mut out, &targets.pixels);
+        round(targets, plan, &mut out);
         if !step() {
             return None;
         }
@@ -316,7 +331,7 @@ pub fn synthesize_prepared(
             &sample.channels[j as usize],
             &plan,
             opts.iterations,
-            (opts.seed, 0x4842_0000 + j),
+            (opts.seed, stream(j as usize)),
             &step,
         )
     });
@@ -324,7 +339,20 @@ pub fn synthesize_prepared(
         return None;
     }
     let channels: Vec<Vec<f32>> = channels.into_iter().collect::<Option<_>>()?;
-    // Back to RGB, then each RGB channel matched to the photo's own.
+    Some(to_photo(sample, &channels, (width, height)))
+}
+
+/// The noise stream of decorrelated channel `j`.
+fn stream(j: usize) -> u32 {
+    0x4842_0000 + j as u32
+}
+
+/// Decorrelated channels back to RGB, each RGB channel matched to the photo's own.
+fn to_photo(
+    sample: &PreparedSample,
+    channels: &[Vec<f32>],
+    (width, height): (usize, usize),
+) -> Photo {
     let mut rgb: [Vec<f32>; 3] = std::array::from_fn(|c| {
         (0..width * height)
             .map(|i| {
@@ -338,13 +366,79 @@ pub fn synthesize_prepared(
     for (channel, target) in rgb.iter_mut().zip(&sample.rgb) {
         match_histogram(channel, target);
     }
-    Some(Photo {
+    Photo {
         width: width as u32,
         height: height as u32,
         pixels: (0..width * height)
             .map(|i| std::array::from_fn(|c| rgb[c][i].clamp(0.0, 1.0)))
             .collect(),
-    })
+    }
+}
+
+/// The synthesis one round at a time, for a caller that must do other things in between (the
+/// browser's worker: Cancel, progress): the same rounds as [`synthesize`], so the same bits.
+#[derive(Clone, Debug)]
+pub struct Synthesis {
+    sample: PreparedSample,
+    plan: Plan,
+    iterations: usize,
+    channels: Vec<Vec<f32>>,
+    done: usize,
+}
+
+impl Synthesis {
+    /// Prepares `photo` and starts the loop (checks as [`synthesize_progress`]).
+    pub fn new(
+        photo: &Photo,
+        opts: &RasterOptions,
+        (max_pixels, past): (u64, &str),
+    ) -> Result<Synthesis> {
+        photo.check_min_size()?;
+        opts.validate(max_pixels, past)?;
+        let output = (opts.width as usize, opts.height as usize);
+        let scales = scales_for(
+            (photo.width as usize, photo.height as usize),
+            output,
+            opts.scales,
+        );
+        let sample = prepare(photo, scales, opts.orientations as usize);
+        let plan = Plan::new(output.0, output.1, scales, opts.orientations as usize);
+        let channels = (0..3)
+            .map(|j| start_channel(&sample.channels[j], &plan, (opts.seed, stream(j))))
+            .collect();
+        Ok(Synthesis {
+            sample,
+            plan,
+            iterations: opts.iterations as usize,
+            channels,
+            done: 0,
+        })
+    }
+
+    /// Rounds in all (three channels × the iterations).
+    pub fn steps(&self) -> usize {
+        3 * self.iterations
+    }
+
+    /// Rounds done.
+    pub fn done(&self) -> usize {
+        self.done
+    }
+
+    /// Runs the next round (channel by channel); returns whether any remain.
+    pub fn step(&mut self) -> bool {
+        if self.done < self.steps() {
+            let j = self.done / self.iterations;
+            round(&self.sample.channels[j], &self.plan, &mut self.channels[j]);
+            self.done += 1;
+        }
+        self.done < self.steps()
+    }
+
+    /// The texture as it stands (the result once every round is done).
+    pub fn photo(&self) -> Photo {
+        to_photo(&self.sample, &self.channels, self.plan.size())
+    }
 }
 
 #[cfg(test)]

@@ -297,6 +297,36 @@ impl Plan {
         self.levels.get(s).map_or(self.bottom, |l| (l.w, l.h))
     }
 
+    /// The sizes of the 2D FFTs that one [`Plan::analyse`] runs, in order (two real subbands
+    /// share one transform): with [`Plan::synthesis_transforms`], the cost floor a benchmark
+    /// states the synthesis' time against.
+    pub fn analysis_transforms(&self) -> Vec<(usize, usize)> {
+        let full = (self.width, self.height);
+        let mut out = vec![full, full];
+        for level in &self.levels {
+            out.extend(std::iter::repeat_n(
+                (level.w, level.h),
+                level.bands.len().div_ceil(2),
+            ));
+        }
+        out.push(self.bottom);
+        out
+    }
+
+    /// The sizes of the 2D FFTs that one [`Plan::synthesise`] runs, in order.
+    pub fn synthesis_transforms(&self) -> Vec<(usize, usize)> {
+        let full = (self.width, self.height);
+        let mut out = vec![self.bottom];
+        for level in self.levels.iter().rev() {
+            out.extend(std::iter::repeat_n(
+                (level.w, level.h),
+                level.bands.len().div_ceil(2),
+            ));
+        }
+        out.extend([full, full]);
+        out
+    }
+
     /// The subbands of a `w × h` image.
     pub fn analyse(&self, image: &[f32]) -> Pyramid {
         let (w, h) = (self.width, self.height);

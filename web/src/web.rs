@@ -151,6 +151,38 @@ pub fn suggestions_failed(message: String) {
     send(Command::SuggestFailed(message));
 }
 
+/// The worker ran `done` of `total` rounds of the Heeger–Bergen synthesis the app asked for.
+#[wasm_bindgen(js_name = pyramidProgress)]
+pub fn pyramid_progress(done: u32, total: u32) {
+    send(Command::PyramidProgress { done, total });
+}
+
+/// The Heeger–Bergen synthesis the app asked for: RGBA8, `width × height`, and its time.
+#[wasm_bindgen(js_name = pyramidDone)]
+pub fn pyramid_done(rgba: Vec<u8>, width: u32, height: u32, ms: f64) -> Result<(), JsValue> {
+    if width == 0 || height == 0 || rgba.len() != width as usize * height as usize * 4 {
+        return Err(JsValue::from_str("pyramid synthesis: wrong size"));
+    }
+    send(Command::PyramidDone {
+        rgba,
+        size: [width, height],
+        ms,
+    });
+    Ok(())
+}
+
+/// The Heeger–Bergen synthesis was cancelled (the user's Cancel, or a newer one).
+#[wasm_bindgen(js_name = pyramidCancelled)]
+pub fn pyramid_cancelled() {
+    send(Command::PyramidCancelled);
+}
+
+/// The Heeger–Bergen synthesis failed; the message says why.
+#[wasm_bindgen(js_name = pyramidFailed)]
+pub fn pyramid_failed(message: String) {
+    send(Command::PyramidFailed(message));
+}
+
 /// The model statistics the app asked for (`proctexHost.modelStats(params)`).
 #[wasm_bindgen(js_name = modelStatsDone)]
 pub fn model_stats_done(params_json: String, stats_json: String) -> Result<(), JsValue> {

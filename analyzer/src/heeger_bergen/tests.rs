@@ -134,3 +134,29 @@ fn bad_input_is_refused_in_words() {
         assert!(e.contains(words), "{e}");
     }
 }
+
+#[test]
+fn the_stepwise_synthesis_is_the_same_synthesis() {
+    let photo = sample(64, 48);
+    let opts = RasterOptions {
+        iterations: 3,
+        ..RasterOptions::new(80, 64)
+    };
+    let mut s = Synthesis::new(&photo, &opts, (MAX_SYNTHESIS_PIXELS, "")).unwrap();
+    assert_eq!((s.done(), s.steps()), (0, 9));
+    let mut rounds = 0;
+    while s.step() {
+        rounds += 1;
+    }
+    assert_eq!((rounds + 1, s.done()), (9, 9));
+    assert!(!s.step(), "no rounds left");
+    assert_eq!(s.photo(), synthesize(&photo, &opts).unwrap());
+    // No rounds at all: the histogram-matched noise.
+    let none = RasterOptions {
+        iterations: 0,
+        ..opts
+    };
+    let mut s = Synthesis::new(&photo, &none, (MAX_SYNTHESIS_PIXELS, "")).unwrap();
+    assert!(!s.step());
+    assert_eq!(s.photo(), synthesize(&photo, &none).unwrap());
+}

@@ -85,6 +85,18 @@ pub enum Command {
     Adopted { index: usize, report: Box<Report> },
     /// The suggestions could not be computed.
     SuggestFailed(String),
+    /// The worker ran `done` of `total` rounds of the pyramid synthesis.
+    PyramidProgress { done: u32, total: u32 },
+    /// The pyramid synthesis is done: RGBA8 of `size`, in `ms` milliseconds.
+    PyramidDone {
+        rgba: Vec<u8>,
+        size: [u32; 2],
+        ms: f64,
+    },
+    /// The pyramid synthesis was cancelled.
+    PyramidCancelled,
+    /// The pyramid synthesis failed.
+    PyramidFailed(String),
     /// PNG tile export choices: side, bits (8 or 16), CPU even with a GPU.
     TileOptions {
         size: u32,
@@ -155,6 +167,8 @@ pub struct Snapshot {
     pub adopted: Option<usize>,
     /// Why there are no suggestions, if they failed.
     pub suggest_error: Option<String>,
+    /// The pyramid (Heeger–Bergen) view's synthesis.
+    pub pyramid: super::pyramid::PyramidSnapshot,
     /// Undo/redo depths.
     pub undo: usize,
     /// Redo depth.
@@ -254,6 +268,10 @@ impl ProctexApp {
                     self.suggest.adopting = None;
                     self.suggest.error = Some(e);
                 }
+                Command::PyramidProgress { done, total } => self.pyramid_progress(done, total),
+                Command::PyramidDone { rgba, size, ms } => self.pyramid_done(ctx, rgba, size, ms),
+                Command::PyramidCancelled => self.pyramid_stopped(None),
+                Command::PyramidFailed(e) => self.pyramid_stopped(Some(e)),
                 Command::ModelStats(stats) => {
                     let (p, s) = *stats;
                     self.model_stats = Some((p, s));
@@ -354,6 +372,7 @@ impl ProctexApp {
                     .collect(),
                 morph_t: self.presets.morph.as_ref().map(|_| self.presets.t),
                 morph_playing: self.presets.playing,
+                pyramid: self.pyramid.snapshot(),
                 undo: self.undo.len(),
                 redo: self.redo.len(),
                 suggestions: self.suggest.rows.clone(),

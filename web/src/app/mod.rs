@@ -10,7 +10,8 @@
 //! One room per panel or concern, each an `impl ProctexApp` block over the shared state
 //! defined here: `photo` (photo panel, analysis results), `crop` (the crop rectangle),
 //! `suggestions` (the ranked models), `presets` (gallery and user presets), `morph`, `export`
-//! (shaders), `tiles` (PNG tile export), `plots`, `controls` (parameters, undo/redo), `view`
+//! (shaders), `tiles` (PNG tile export), `pyramid` (the Heeger–Bergen raster synthesis beside
+//! the texture), `plots`, `controls` (parameters, undo/redo), `view`
 //! (toolbar, central view, paint callback) and `bridge` (commands from the page, the snapshot
 //! for it, calls into it).
 
@@ -33,6 +34,7 @@ mod morph;
 mod photo;
 mod plots;
 mod presets;
+mod pyramid;
 mod suggestions;
 mod tiles;
 mod view;
@@ -65,13 +67,16 @@ pub enum ViewMode {
     Sphere,
     /// The solid texture on a cube.
     Cube,
+    /// The photo crop, the texture and the Heeger–Bergen raster synthesis side by side.
+    Pyramid,
 }
 
 impl ViewMode {
     /// All modes, in toolbar order.
-    pub const ALL: [ViewMode; 4] = [
+    pub const ALL: [ViewMode; 5] = [
         ViewMode::Plane,
         ViewMode::Split,
+        ViewMode::Pyramid,
         ViewMode::Sphere,
         ViewMode::Cube,
     ];
@@ -87,6 +92,7 @@ impl ViewMode {
             ViewMode::Split => "split",
             ViewMode::Sphere => "sphere",
             ViewMode::Cube => "cube",
+            ViewMode::Pyramid => "pyramid",
         }
     }
 
@@ -96,6 +102,7 @@ impl ViewMode {
             ViewMode::Split => "Split vs photo",
             ViewMode::Sphere => "Sphere",
             ViewMode::Cube => "Cube",
+            ViewMode::Pyramid => "Pyramid (Heeger–Bergen)",
         }
     }
 }
@@ -168,6 +175,8 @@ pub struct ProctexApp {
     suggest: SuggestState,
     /// The refinement's time budget in seconds (0: none, the evaluation budget alone).
     refine_budget_s: f32,
+    /// The pyramid view's raster synthesis.
+    pyramid: pyramid::PyramidState,
 }
 
 /// The automatic model choice's list: filled by the worker after each analysis.
@@ -301,6 +310,7 @@ impl ProctexApp {
             tile_job: None,
             suggest: SuggestState::default(),
             refine_budget_s: 0.0,
+            pyramid: pyramid::PyramidState::default(),
             gpu: None,
             presets: PresetsState {
                 duration_s: 4.0,

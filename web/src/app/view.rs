@@ -1,6 +1,6 @@
 //! The texture view: the toolbar of view modes, the central panel (plane with pan and zoom,
-//! split against the photo, sphere and cube with orbit), the tile outline, and the paint
-//! callback that draws the cached view.
+//! split against the photo, sphere and cube with orbit; the pyramid view is `pyramid`'s), the
+//! tile outline, and the paint callback that draws the cached view.
 
 use eframe::egui;
 use eframe::egui_wgpu;
@@ -125,6 +125,7 @@ impl ProctexApp {
                 );
                 self.paint_texture(ui, rect, solid, Pass::Solid, View::default(), Some(sv));
             }
+            ViewMode::Pyramid => self.pyramid_view(ui, rect, &response, params),
             ViewMode::Plane | ViewMode::Split => {
                 self.pan_zoom_input(ui, rect, &response);
                 let (photo_rect, tex_rect) = if self.mode == ViewMode::Split {

@@ -162,6 +162,60 @@ impl Suggestions {
     }
 }
 
+/// Worker job: the Heeger–Bergen raster synthesis of a photo (or crop) in rounds (see
+/// `pyramid_job::PyramidJob`): `new` prepares, each `step` runs one round, `rgba` is the
+/// texture.
+#[wasm_bindgen]
+#[derive(Debug)]
+pub struct PyramidSynthesis {
+    job: crate::pyramid_job::PyramidJob,
+}
+
+#[wasm_bindgen]
+impl PyramidSynthesis {
+    /// Prepares the synthesis of `crop` (`[x, y, w, h]` or empty) of an RGBA image; throws the
+    /// error's message (bad crop, too small).
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Vec<u32>,
+        seed: u32,
+    ) -> Result<PyramidSynthesis, JsValue> {
+        let job =
+            crate::pyramid_job::PyramidJob::new(rgba, width, height, parse_crop(&crop)?, seed)
+                .map_err(js_error)?;
+        Ok(PyramidSynthesis { job })
+    }
+
+    /// Rounds done.
+    pub fn done(&self) -> usize {
+        self.job.progress().0
+    }
+
+    /// Rounds in all.
+    pub fn steps(&self) -> usize {
+        self.job.progress().1
+    }
+
+    /// Runs the next round; returns whether any remain.
+    pub fn step(&mut self) -> bool {
+        self.job.step()
+    }
+
+    /// Width and height of the texture.
+    pub fn size(&self) -> Vec<u32> {
+        let (w, h) = self.job.size();
+        vec![w, h]
+    }
+
+    /// The texture as it stands, RGBA8.
+    pub fn rgba(&self) -> Vec<u8> {
+        self.job.rgba()
+    }
+}
+
 /// Helper-worker job: refines families of a `Suggestions` job of another worker, from that
 /// job's `preparedPixels`, `preparedSize` and seed (the same retrieval, so the same results).
 #[wasm_bindgen]

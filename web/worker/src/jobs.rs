@@ -21,7 +21,7 @@ use proctex::structure::fit_structured;
 use serde::{Deserialize, Serialize};
 
 /// How the page tells a user to go past the photo pixel limit.
-const PAST_THE_LIMIT_IN_THE_PAGE: &str =
+pub(crate) const PAST_THE_LIMIT_IN_THE_PAGE: &str =
     "scale it down first (the proctex CLI can go past this with --max-pixels)";
 
 /// Refuses a photo file before the browser decodes it: over [`limits::MAX_FILE_BYTES`], a TIFF
@@ -156,7 +156,7 @@ fn report(
 }
 
 /// The `crop` (photo pixels; `None`: all) of an RGBA image, checked, as a photo.
-fn region(
+pub(crate) fn region(
     rgba: &[u8],
     width: u32,
     height: u32,

@@ -8,6 +8,7 @@
 //! suggestion rows) and for the CPU preview of presets, with the exports off.
 
 pub mod jobs;
+pub mod pyramid_job;
 
 #[cfg(all(target_arch = "wasm32", feature = "exports"))]
 mod exports;

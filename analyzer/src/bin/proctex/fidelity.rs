@@ -8,13 +8,14 @@ use proctex::devset::{
     Category, PhotoResult, SPECK_LIMIT, Summary, defined, fold_of, overall, parse_manifest, ratios,
     speck_ratio,
 };
-use proctex::evaluate::{fidelity, fidelity_observed, ratio_difference};
+use proctex::evaluate::{Synthesiser, fidelity, fidelity_by, fidelity_observed, ratio_difference};
+use proctex::heeger_bergen::RasterOptions;
 use proctex::retrieve::{ModelChoice, Refinement};
 use proctex::{Error, Result};
 
 use super::args::{Args, usage};
 use super::files::{load_photo, read};
-use super::{analysis_flag, model_choice, refinement_of};
+use super::{analysis_flag, parse_model_choice, refinement_of};
 use proctex::limits;
 
 const FIDELITY_HELP: &str = "\
@@ -26,7 +27,9 @@ bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and com
 other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio
 (near 1: as close as another patch of the same material), and the floor: the same ratio for
 the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
-can do). --model as for `analyze`, but noise by default (the noise-only table of docs/measurements.md).
+can do). --model as for `analyze`, but noise by default (the noise-only table of docs/measurements.md),
+or `pyramid`: the Heeger–Bergen raster synthesis from the patch (`proctex pyramid`'s defaults,
+or --iterations N, --scales S and --orientations K as there).
 --against M2 also runs M2 with the same seeds and prints the difference of the ratios (M − M2;
 negative: M is nearer) with its standard error over the distinct source patches, the
 independent samples (a difference within about twice it is not evidence either way): four, or
@@ -48,13 +51,14 @@ folds for cross-validation).";
 
 pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut o = Options::default();
-    let mut model = ModelChoice::Noise;
+    let mut model = Choice::Model(ModelChoice::Noise);
     let mut refinement = Refinement::default();
     let mut files = Vec::new();
     let mut against = None;
     let (mut nseeds, mut json) = (None, false);
     let mut set = None;
     let mut fold = None;
+    let mut raster = RasterOptions::new(0, 0);
     while let Some(arg) = a.next() {
         match arg.as_str() {
             "-h" | "--help" => {
@@ -64,9 +68,12 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
             "--seeds" => nseeds = Some(a.parsed::<u32>(&arg)?),
             "--set" => set = Some(a.value(&arg)?),
             "--fold" => fold = Some(fold_of_arg(&a.value(&arg)?)?),
-            "--model" => model = model_choice(&mut a, &arg)?,
-            "--against" => against = Some(model_choice(&mut a, &arg)?),
+            "--model" => model = choice(&mut a, &arg)?,
+            "--against" => against = Some(choice(&mut a, &arg)?),
             "--refine" => refinement = refinement_of(a.parsed(&arg)?),
+            "--iterations" => raster.iterations = a.parsed(&arg)?,
+            "--scales" => raster.scales = a.parsed(&arg)?,
+            "--orientations" => raster.orientations = a.parsed(&arg)?,
             "--json" => json = true,
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("fidelity: unknown option {f}"))),
@@ -74,9 +81,9 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
         }
     }
     if let Some(dir) = set {
-        if !files.is_empty() || against.is_some() {
+        if !files.is_empty() || against.is_some() || model != Choice::Model(ModelChoice::Noise) {
             return Err(usage(
-                "fidelity --set: no photos and no --against (the set says both)",
+                "fidelity --set: no photos, no --model and no --against (the set says them)",
             ));
         }
         let seeds: Vec<u32> = (1..=nseeds.unwrap_or(1)).collect();
@@ -110,10 +117,14 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     }
     for f in &files {
         let photo = load_photo(f, a.photo_pixels())?;
-        let r = fidelity(&photo, &o, model, refinement, &seeds)?;
+        let by = |c: Choice| {
+            let synthesiser = c.synthesiser(refinement, raster);
+            fidelity_by(&photo, &o, synthesiser, &seeds, &mut |_| {})
+        };
+        let r = by(model)?;
         let diff = match against {
             Some(m) => {
-                let other = fidelity(&photo, &o, m, refinement, &seeds)?;
+                let other = by(m)?;
                 Some((other, ratio_difference(&r, &other)))
             }
             None => None,
@@ -171,6 +182,30 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// What `--model` and `--against` name: a procedural model, or the pyramid synthesis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Choice {
+    Model(ModelChoice),
+    Pyramid,
+}
+
+impl Choice {
+    fn synthesiser(self, refinement: Refinement, raster: RasterOptions) -> Synthesiser {
+        match self {
+            Choice::Model(m) => Synthesiser::Model(m, refinement),
+            Choice::Pyramid => Synthesiser::Pyramid(raster),
+        }
+    }
+}
+
+fn choice(a: &mut Args, flag: &str) -> Result<Choice> {
+    let v = a.value(flag)?;
+    if v == "pyramid" {
+        return Ok(Choice::Pyramid);
+    }
+    parse_model_choice(flag, &v, ", pyramid").map(Choice::Model)
 }
 
 /// `K/F` of `--fold`.

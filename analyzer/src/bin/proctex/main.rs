@@ -273,14 +273,19 @@ fn refinement_of(evaluations: usize) -> Refinement {
 }
 
 fn model_choice(a: &mut Args, flag: &str) -> Result<ModelChoice> {
-    let v = a.value(flag)?;
-    ModelChoice::parse(&v).ok_or_else(|| {
+    parse_model_choice(flag, &a.value(flag)?, "")
+}
+
+/// `v` as a model choice of `flag`; `also` names further accepted values in the message.
+fn parse_model_choice(flag: &str, v: &str, also: &str) -> Result<ModelChoice> {
+    ModelChoice::parse(v).ok_or_else(|| {
         let kinds: Vec<&str> = proctex::pattern::PatternKind::ALL
             .iter()
             .map(|k| k.name())
             .collect();
         usage(format!(
-            "--model: `{v}` is not auto, noise or one of {}",
+            "{flag}: `{}` is not auto, noise{also} or one of {}",
+            quote(v),
             kinds.join(", ")
         ))
     })

@@ -1,0 +1,89 @@
+// The pyramid view: the Heeger–Bergen raster synthesis of the crop beside the photo crop and
+// the procedural texture, computed in the worker with progress and Cancel, again for a new
+// photo, and downloadable as a PNG tile.
+const { test } = require('@playwright/test');
+const {
+  expect, openApp, state, waitFrames, grab, channelStats, clickWidget, innerSquare, waitAnalyses,
+} = require('./helpers');
+
+// Three panes of 192 CSS px, each wide enough for a 160² grab.
+const VIEW = [576, 200];
+
+// Waits until the pyramid view has finished `n` syntheses in all.
+async function waitSyntheses(page, n) {
+  await page.waitForFunction((k) => {
+    window.proctex.requestRepaint();
+    const p = window.proctex.state().pyramid;
+    return p.finished >= k && !p.running;
+  }, n, { polling: 100, timeout: 120_000 });
+  await waitFrames(page, 3);
+}
+
+// The synthesis pane is a texture of the photo's material: it varies like the photo crop, its
+// colours agree with the photo's, and it is not the photo's pixels.
+async function expectSynthesisOfPhoto(page) {
+  const s = await state(page);
+  const photo = await grab(page, innerSquare(s.widgets['pyramid.photo'], 160));
+  const syn = await grab(page, innerSquare(s.widgets['pyramid.synthesis'], 160));
+  const [ps, ss] = [channelStats(photo), channelStats(syn)];
+  for (let c = 0; c < 3; c++) {
+    expect(ss[c].sd).toBeGreaterThan(0.4 * ps[c].sd);
+    expect(Math.abs(ss[c].mean - ps[c].mean)).toBeLessThan(12);
+  }
+  expect(Buffer.compare(photo.data, syn.data)).not.toBe(0);
+  return s;
+}
+
+test('the pyramid view synthesises the sample, and a new photo again', async ({ page }) => {
+  await openApp(page, { view: VIEW });
+  await clickWidget(page, 'mode.pyramid');
+  await waitSyntheses(page, 1);
+  let s = await expectSynthesisOfPhoto(page);
+  expect(s.view_mode).toBe('pyramid');
+  expect(s.pyramid.of[0]).toBe(s.photo);
+  expect(s.pyramid.size[0]).toBeGreaterThanOrEqual(256);
+  console.log(`pyramid synthesis of ${s.photo} (${s.pyramid.size}) in ${s.pyramid.ms.toFixed(0)} ms`);
+  // A new photo, as a user drops one: its crop is synthesised in turn.
+  const before = s.analyses;
+  await page.evaluate(() => window.proctex.loadSample('skimage_gravel_512.png'));
+  await waitAnalyses(page, before + 1);
+  await waitSyntheses(page, 2);
+  s = await expectSynthesisOfPhoto(page);
+  expect(s.pyramid.of[0]).toBe('skimage_gravel_512.png');
+  // Download PNG: the synthesis at its own size.
+  const download = page.waitForEvent('download');
+  await clickWidget(page, 'pyramid.download');
+  const file = await download;
+  expect(file.suggestedFilename()).toBe(`skimage_gravel_512_heeger_bergen_${s.pyramid.size[0]}x${s.pyramid.size[1]}.png`);
+  const png = await page.evaluate(() => window.proctex.lastPng);
+  expect([png.width, png.height]).toEqual(s.pyramid.size);
+  expect(png.bytes).toBeGreaterThan(1000);
+});
+
+test('Cancel stops the pyramid synthesis, and it can run again', async ({ page }) => {
+  await openApp(page, { view: VIEW });
+  await clickWidget(page, 'mode.pyramid');
+  // Cancel as soon as the first rounds are reported.
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    const p = window.proctex.state().pyramid;
+    return p.running && p.progress !== null;
+  }, null, { polling: 20, timeout: 60_000 });
+  await clickWidget(page, 'pyramid.cancel');
+  await page.waitForFunction(() => {
+    window.proctex.requestRepaint();
+    return !window.proctex.state().pyramid.running;
+  }, null, { polling: 50, timeout: 30_000 });
+  await waitFrames(page, 2);
+  let s = await state(page);
+  expect(s.pyramid.cancelled).toBe(true);
+  expect(s.pyramid.finished).toBe(0);
+  expect(s.pyramid.size).toBeNull();
+  // Nothing starts by itself for the crop it was told to stop; the button starts it again.
+  await page.waitForTimeout(500);
+  s = await state(page);
+  expect(s.pyramid.running).toBe(false);
+  await clickWidget(page, 'pyramid.again');
+  await waitSyntheses(page, 1);
+  await expectSynthesisOfPhoto(page);
+});

@@ -1,0 +1,108 @@
+//! The Heeger–Bergen raster synthesis of the current photo (or crop) in the worker, one round
+//! at a time ([`proctex::heeger_bergen::Synthesis`]), so that the worker can report progress
+//! and see Cancel between rounds. The crop is reduced to the analysis size first, as the
+//! analysis reduces it, and synthesised at that size: a tile of the crop's extent.
+
+use proctex::analyze::Options;
+use proctex::heeger_bergen::{MAX_SYNTHESIS_PIXELS, RasterOptions, Synthesis};
+use proctex::render::Image;
+
+use crate::jobs::{PAST_THE_LIMIT_IN_THE_PAGE, region};
+
+/// A synthesis in progress.
+#[derive(Clone, Debug)]
+pub struct PyramidJob {
+    synthesis: Synthesis,
+    size: (u32, u32),
+}
+
+impl PyramidJob {
+    /// Starts the synthesis of `crop` (photo pixels; `None`: all) of an RGBA image, with the
+    /// paper's defaults and `seed`.
+    pub fn new(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Option<[u32; 4]>,
+        seed: u32,
+    ) -> proctex::error::Result<PyramidJob> {
+        let photo = region(rgba, width, height, crop)?.reduce_to(Options::default().size);
+        let opts = RasterOptions {
+            seed,
+            ..RasterOptions::new(photo.width, photo.height)
+        };
+        let limit = (MAX_SYNTHESIS_PIXELS, PAST_THE_LIMIT_IN_THE_PAGE);
+        Ok(PyramidJob {
+            synthesis: Synthesis::new(&photo, &opts, limit)?,
+            size: (photo.width, photo.height),
+        })
+    }
+
+    /// Rounds done and in all.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.synthesis.done(), self.synthesis.steps())
+    }
+
+    /// Runs the next round; returns whether any remain.
+    pub fn step(&mut self) -> bool {
+        self.synthesis.step()
+    }
+
+    /// The synthesis' size (the reduced crop's).
+    pub fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// The texture as it stands, RGBA8.
+    pub fn rgba(&self) -> Vec<u8> {
+        let p = self.synthesis.photo();
+        Image {
+            width: p.width,
+            height: p.height,
+            pixels: p.pixels,
+        }
+        .to_rgb8()
+        .chunks_exact(3)
+        .flat_map(|c| [c[0], c[1], c[2], 255])
+        .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn checker(w: u32, h: u32) -> Vec<u8> {
+        (0..w * h)
+            .flat_map(|i| {
+                let (x, y) = (i % w, i / w);
+                let v = if (x / 6 + y / 9) % 2 == 0 { 200 } else { 40 };
+                [v, v / 2 + (x % 7) as u8, 90, 255]
+            })
+            .collect()
+    }
+
+    /// The job synthesises the reduced crop in 3 × 5 rounds, to a texture of its size that is
+    /// not flat; a bad crop and a too small crop are refused in words.
+    #[test]
+    fn synthesises_the_reduced_crop_in_rounds() {
+        let rgba = checker(1200, 300);
+        let mut job = PyramidJob::new(&rgba, 1200, 300, Some([100, 0, 1024, 256]), 1).unwrap();
+        assert_eq!(job.size(), (512, 128));
+        assert_eq!(job.progress(), (0, 15));
+        let mut steps = 1;
+        while job.step() {
+            steps += 1;
+        }
+        assert_eq!((steps, job.progress()), (15, (15, 15)));
+        let out = job.rgba();
+        assert_eq!(out.len(), 512 * 128 * 4);
+        let colours: std::collections::BTreeSet<[u8; 3]> =
+            out.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+        assert!(colours.len() > 20, "{} distinct colours", colours.len());
+        let e = PyramidJob::new(&rgba, 1200, 300, Some([1100, 0, 200, 200]), 1).unwrap_err();
+        assert!(e.to_string().contains("reaches outside"), "{e}");
+        let e = PyramidJob::new(&rgba, 1200, 300, Some([0, 0, 20, 20]), 1).unwrap_err();
+        assert!(e.to_string().contains("at least 32"), "{e}");
+    }
+}
