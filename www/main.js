@@ -497,6 +497,12 @@ window.proctex = {
   getPresets: () => wasm.getPresets() ?? null,
   // e2e/bench: median milliseconds of the retrieval stages (worker, `reps` runs each) for an
   // RGBA image.
+  benchPyramid: async (rgba, width, height, reps) => {
+    const [, reply] = job({ type: 'benchPyramid', rgba, width, height, reps });
+    const m = await reply;
+    if (m.type !== 'bench') throw new Error(m.message ?? m.type);
+    return m.ms;
+  },
   benchRetrieval: async (rgba, width, height, reps) => {
     const [, reply] = job({ type: 'benchRetrieval', rgba, width, height, reps });
     const m = await reply;

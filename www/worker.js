@@ -372,6 +372,22 @@ async function handle(m) {
       }
       return;
     }
+    case 'benchPyramid': {
+      // e2e/bench: median milliseconds of the synthesis and of the FFTs it needs.
+      const ms = {};
+      for (const stage of ['ffts', 'synthesis']) {
+        const t = [];
+        for (let i = 0; i < m.reps; i++) {
+          const s = performance.now();
+          wasm.benchPyramid(m.rgba, m.width, m.height, stage);
+          t.push(performance.now() - s);
+        }
+        t.sort((a, b) => a - b);
+        ms[stage] = t[t.length >> 1];
+      }
+      postMessage({ type: 'bench', id: m.id, ms });
+      return;
+    }
     case 'benchRetrieval': {
       // e2e/bench: median milliseconds of each retrieval stage over `reps` runs.
       await dbReady;

@@ -16,7 +16,7 @@ use std::hint::black_box;
 
 use common::{median_time, ms};
 
-use proctex::heeger_bergen::{RasterOptions, synthesize};
+use proctex::heeger_bergen::{RasterOptions, synthesize, transforms};
 use proctex::input::Photo;
 use proctex::pyramid::Plan;
 use proctex::spectrum::fft2_real;
@@ -33,18 +33,7 @@ fn main() {
     println!("proctex pyramid benchmark (median of {reps} runs; ratios within one run)");
 
     let plan = Plan::new(512, 512, 4, 4);
-    // The sample's analysis once per channel, then per round an analysis and a reconstruction
-    // per channel; plus the periodic component's transform and inverse per RGB channel.
-    let rounds = opts.iterations as usize;
-    let mut sizes = Vec::new();
-    for _ in 0..3 {
-        sizes.extend([(512, 512), (512, 512)]);
-        sizes.extend(plan.analysis_transforms());
-        for _ in 0..rounds {
-            sizes.extend(plan.analysis_transforms());
-            sizes.extend(plan.synthesis_transforms());
-        }
-    }
+    let sizes = transforms((512, 512), &opts);
     let images: Vec<Vec<f32>> = [
         (512usize, 512usize),
         (256, 256),

@@ -1,6 +1,7 @@
 //! How far the Heeger–Bergen loop leaves each subband's histogram from the sample's, by the
 //! number of rounds: the largest decile difference over every subband of each decorrelated
-//! channel, in units of the subband's deviation (worst band) and of the channel's deviation.
+//! channel, in units of the subband's deviation (worst band) and of the channel's deviation;
+//! and the pyramid's relative reconstruction error on each channel.
 //!
 //! `cargo run --release -p proctex-analyzer --example hb_convergence -- PHOTO...`
 
@@ -21,7 +22,19 @@ fn main() {
         let plan = Plan::new(w, h, 4, 4);
         for (j, targets) in prepared.channels.iter().enumerate() {
             let channel_sd = deviation(&targets.pixels);
-            let mut line = format!("{} ch {j}:", path.rsplit('/').next().unwrap());
+            let channel = synthesize_channel(targets, &plan, 0, (1, j as u32), &|| true).unwrap();
+            let back = plan.synthesise(&plan.analyse(&channel));
+            let (num, den) = channel
+                .iter()
+                .zip(&back)
+                .fold((0.0f64, 0.0f64), |(n, d), (a, b)| {
+                    (n + ((a - b) as f64).powi(2), d + (*a as f64).powi(2))
+                });
+            let mut line = format!(
+                "{} ch {j}: reconstruction {:.1e};",
+                path.rsplit('/').next().unwrap(),
+                (num / den.max(1e-30)).sqrt()
+            );
             for rounds in [0, 1, 2, 5, 10, 20] {
                 let out =
                     synthesize_channel(targets, &plan, rounds, (1, j as u32), &|| true).unwrap();

@@ -375,6 +375,30 @@ fn to_photo(
     }
 }
 
+/// The 2D FFTs a synthesis of a `sample`-sized photo with `opts` runs, by size: per RGB
+/// channel the periodic component's transform and inverse; per decorrelated channel the
+/// sample's analysis, then each round's analysis and reconstruction. What benchmarks state the
+/// synthesis' time against.
+pub fn transforms(sample: (usize, usize), opts: &RasterOptions) -> Vec<(usize, usize)> {
+    let output = (opts.width as usize, opts.height as usize);
+    let scales = scales_for(sample, output, opts.scales);
+    let k = opts.orientations as usize;
+    let (on_sample, on_output) = (
+        Plan::new(sample.0, sample.1, scales, k),
+        Plan::new(output.0, output.1, scales, k),
+    );
+    let mut out = Vec::new();
+    for _ in 0..3 {
+        out.extend([sample, sample]);
+        out.extend(on_sample.analysis_transforms());
+        for _ in 0..opts.iterations {
+            out.extend(on_output.analysis_transforms());
+            out.extend(on_output.synthesis_transforms());
+        }
+    }
+    out
+}
+
 /// The synthesis one round at a time, for a caller that must do other things in between (the
 /// browser's worker: Cancel, progress): the same rounds as [`synthesize`], so the same bits.
 #[derive(Clone, Debug)]

@@ -280,6 +280,32 @@ pub fn bench_retrieval(rgba: &[u8], width: u32, height: u32, stage: &str) -> Res
     }
 }
 
+/// Benchmark job (e2e/bench; the JS side times each call): the Heeger–Bergen synthesis of an
+/// RGBA image at its own size with the paper's defaults (`stage` `"synthesis"`), or the 2D
+/// FFTs that synthesis runs, as plain transforms one after another (`"ffts"`, the cost floor).
+/// Returns a checksum.
+#[wasm_bindgen(js_name = benchPyramid)]
+pub fn bench_pyramid(rgba: &[u8], width: u32, height: u32, stage: &str) -> Result<f64, JsValue> {
+    use proctex::heeger_bergen::{RasterOptions, synthesize, transforms};
+    let photo = proctex::input::Photo::from_rgba8(width, height, rgba).map_err(js_error)?;
+    let opts = RasterOptions::new(width, height);
+    match stage {
+        "synthesis" => {
+            let out = synthesize(&photo, &opts).map_err(js_error)?;
+            Ok(out.pixels.iter().map(|p| p[0] as f64).sum())
+        }
+        "ffts" => {
+            let mut sum = 0.0;
+            for (w, h) in transforms((width as usize, height as usize), &opts) {
+                let image = vec![1.0f32; w * h];
+                sum += proctex::spectrum::fft2_real(&image, w, h)[0].re as f64;
+            }
+            Ok(sum)
+        }
+        _ => Err(JsValue::from_str("stage must be synthesis or ffts")),
+    }
+}
+
 /// A crop from JS: `[x, y, w, h]`, or empty for the whole photo.
 fn parse_crop(crop: &[u32]) -> Result<Option<[u32; 4]>, JsValue> {
     match crop {
