@@ -24,95 +24,7 @@ use crate::error::{Error, Result};
 use crate::histogram::{KNOT_Z, fc_tangents, spline_eval};
 use crate::params::{Histogram, Model, NoiseModel, Params, Tone};
 
-/// A rotation as a unit quaternion `(w, x, y, z)`.
-pub type Quat = [f64; 4];
-
-/// The quaternion of a proper rotation matrix (Shepperd's method, stable for every angle).
-pub fn quat_from_matrix(m: [[f64; 3]; 3]) -> Quat {
-    let tr = m[0][0] + m[1][1] + m[2][2];
-    let q = if tr > 0.0 {
-        let s = (tr + 1.0).sqrt() * 2.0;
-        [
-            0.25 * s,
-            (m[2][1] - m[1][2]) / s,
-            (m[0][2] - m[2][0]) / s,
-            (m[1][0] - m[0][1]) / s,
-        ]
-    } else if m[0][0] > m[1][1] && m[0][0] > m[2][2] {
-        let s = (1.0 + m[0][0] - m[1][1] - m[2][2]).sqrt() * 2.0;
-        [
-            (m[2][1] - m[1][2]) / s,
-            0.25 * s,
-            (m[0][1] + m[1][0]) / s,
-            (m[0][2] + m[2][0]) / s,
-        ]
-    } else if m[1][1] > m[2][2] {
-        let s = (1.0 + m[1][1] - m[0][0] - m[2][2]).sqrt() * 2.0;
-        [
-            (m[0][2] - m[2][0]) / s,
-            (m[0][1] + m[1][0]) / s,
-            0.25 * s,
-            (m[1][2] + m[2][1]) / s,
-        ]
-    } else {
-        let s = (1.0 + m[2][2] - m[0][0] - m[1][1]).sqrt() * 2.0;
-        [
-            (m[1][0] - m[0][1]) / s,
-            (m[0][2] + m[2][0]) / s,
-            (m[1][2] + m[2][1]) / s,
-            0.25 * s,
-        ]
-    };
-    normalize4(q)
-}
-
-/// The rotation matrix of a unit quaternion.
-pub fn matrix_from_quat(q: Quat) -> [[f64; 3]; 3] {
-    let [w, x, y, z] = normalize4(q);
-    [
-        [
-            1.0 - 2.0 * (y * y + z * z),
-            2.0 * (x * y - w * z),
-            2.0 * (x * z + w * y),
-        ],
-        [
-            2.0 * (x * y + w * z),
-            1.0 - 2.0 * (x * x + z * z),
-            2.0 * (y * z - w * x),
-        ],
-        [
-            2.0 * (x * z - w * y),
-            2.0 * (y * z + w * x),
-            1.0 - 2.0 * (x * x + y * y),
-        ],
-    ]
-}
-
-fn normalize4(q: Quat) -> Quat {
-    let l = q.iter().map(|v| v * v).sum::<f64>().sqrt();
-    q.map(|v| v / l)
-}
-
-/// Spherical linear interpolation along the shorter arc.
-pub fn slerp(a: Quat, b: Quat, t: f64) -> Quat {
-    let mut d: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
-    let b = if d < 0.0 {
-        d = -d;
-        b.map(|v| -v)
-    } else {
-        b
-    };
-    if d > 0.9995 {
-        // Nearly the same rotation: linear, then normalised.
-        return normalize4([0, 1, 2, 3].map(|i| a[i] + t * (b[i] - a[i])));
-    }
-    let theta = d.clamp(-1.0, 1.0).acos();
-    let (sa, sb) = (
-        ((1.0 - t) * theta).sin() / theta.sin(),
-        (t * theta).sin() / theta.sin(),
-    );
-    normalize4([0, 1, 2, 3].map(|i| sa * a[i] + sb * b[i]))
-}
+pub use crate::colour::{Quat, matrix_from_quat, quat_from_matrix, slerp};
 
 /// The inverse-CDF knots a noise model renders with: its own when the histogram is on, the
 /// identity curve otherwise; resampled to `k + 1` knots.
@@ -453,22 +365,5 @@ mod tests {
             assert!((mid.eval(0, x) - want).abs() < 0.02, "{x}");
         }
         assert!(mid.knots[1].windows(2).all(|w| w[0] <= w[1]));
-    }
-
-    #[test]
-    fn quaternion_round_trip_and_slerp_stay_rotations() {
-        let m = matrix_from_quat(normalize4([0.3, -0.5, 0.7, 0.2]));
-        let q = quat_from_matrix(m);
-        let m2 = matrix_from_quat(q);
-        for i in 0..3 {
-            for j in 0..3 {
-                assert!((m[i][j] - m2[i][j]).abs() < 1e-12);
-            }
-        }
-        let a = quat_from_matrix([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
-        for k in 0..=10 {
-            let r = matrix_from_quat(slerp(a, q, k as f64 / 10.0));
-            assert!((crate::colour::det3(r) - 1.0).abs() < 1e-9);
-        }
     }
 }

@@ -498,6 +498,28 @@ fn pyramid_writes_a_texture_of_any_size_and_refuses_bad_options() {
         assert_eq!(o.status.code(), Some(2), "{flag} {value}: {}", stderr(&o));
         assert!(stderr(&o).contains(words), "{}", stderr(&o));
     }
+    // A mixture at m = 0 is the plain synthesis; --m needs --mix, and a value in 0..1.
+    let other = sample("stk_wood_planks1_256.png");
+    let o = proctex(&[
+        "pyramid",
+        &photo,
+        "-o",
+        &b,
+        "--iterations",
+        "2",
+        "--mix",
+        &other,
+        "--m",
+        "0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    for args in [vec!["--m", "0.5"], vec!["--mix", &other, "--m", "2"]] {
+        let mut all = vec!["pyramid", photo.as_str(), "-o", b.as_str()];
+        all.extend(args.iter().copied());
+        let o = proctex(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    }
     // Too large an output is bad input (1), as a too large render is.
     let o = proctex(&[
         "pyramid", &photo, "-o", &b, "--width", "8000", "--height", "8000",

@@ -160,3 +160,73 @@ fn the_stepwise_synthesis_is_the_same_synthesis() {
     assert!(!s.step());
     assert_eq!(s.photo(), synthesize(&photo, &none).unwrap());
 }
+
+/// A second test texture, unlike `sample`: blobs in other colours.
+fn other(w: u32, h: u32) -> Photo {
+    let pixels = (0..w * h)
+        .map(|i| {
+            let (x, y) = ((i % w) as f32, (i / w) as f32);
+            let blobs = (0.21 * x).cos() * (0.17 * y).sin();
+            let grain = rng::gaussian(9, 5, i) as f32;
+            [
+                0.3 + 0.1 * blobs,
+                0.5 + 0.15 * blobs + 0.03 * grain,
+                0.7 - 0.1 * blobs,
+            ]
+        })
+        .collect();
+    Photo {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
+
+#[test]
+fn a_mixture_runs_from_one_synthesis_to_the_other() {
+    let (a, b) = (sample(64, 64), other(80, 72));
+    let opts = RasterOptions {
+        iterations: 2,
+        ..RasterOptions::new(64, 64)
+    };
+    let limit = (MAX_SYNTHESIS_PIXELS, "");
+    let at = |m| synthesize_mixture(&a, &b, m, &opts, limit).unwrap();
+    assert_eq!(at(0.0), synthesize(&a, &opts).unwrap());
+    assert_eq!(at(1.0), synthesize(&b, &opts).unwrap());
+    // Halfway, each RGB channel's median lies between the two samples'.
+    let median = |p: &Photo, c: usize| {
+        let v = sorted(&p.pixels.iter().map(|x| x[c]).collect::<Vec<_>>());
+        v[v.len() / 2]
+    };
+    let half = at(0.5);
+    for c in 0..3 {
+        let (lo, hi) = (
+            median(&a, c).min(median(&b, c)),
+            median(&a, c).max(median(&b, c)),
+        );
+        let mid = median(&half, c);
+        assert!(
+            mid > lo - 0.01 && mid < hi + 0.01,
+            "channel {c}: {mid} not in {lo}..{hi}"
+        );
+        assert!(
+            (mid - (lo + hi) / 2.0).abs() < 0.25 * (hi - lo) + 0.01,
+            "channel {c}"
+        );
+    }
+    let e = synthesize_mixture(&a, &b, 1.5, &opts, limit).unwrap_err();
+    assert!(e.to_string().contains("--m 1.5"), "{e}");
+}
+
+#[test]
+fn the_quantile_mixture_of_sorted_values_is_sorted_and_exact_at_the_ends() {
+    let a: Vec<f32> = (0..10).map(|i| i as f32).collect();
+    let b: Vec<f32> = (0..25).map(|i| 100.0 + (i * i) as f32).collect();
+    for m in [0.0, 0.3, 1.0] {
+        let v = mix_sorted(&a, &b, m);
+        assert_eq!(v.len(), 25);
+        assert!(v.windows(2).all(|w| w[0] <= w[1]));
+    }
+    assert_eq!(mix_sorted(&b, &a, 0.0), b);
+    assert_eq!(mix_sorted(&a, &b, 1.0), b);
+}

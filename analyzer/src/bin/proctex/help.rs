@@ -85,7 +85,7 @@ at the photo's scale. Accepts the options of `analyze`.";
 
 pub const PYRAMID_HELP: &str = "\
 proctex pyramid PHOTO -o OUT.png [--width W --height H] [--iterations N] [--scales S]
-                [--orientations K] [--seed S] [--crop X,Y,W,H]
+                [--orientations K] [--seed S] [--crop X,Y,W,H] [--mix B.png --m M]
 
 Synthesises a raster texture like PHOTO (or the crop) with Heeger & Bergen's pyramid-based
 synthesis (1995): noise whose every steerable-pyramid subband, both residuals included, is
@@ -96,7 +96,10 @@ channel matched to PHOTO's. The output tiles seamlessly and may have any size.
     --iterations N          rounds of the loop (default 5, at most 100)
     --scales S              pyramid scales (default 4; fewer where PHOTO or the output is small)
     --orientations K        orientations per scale (default 4, at most 16)
-    --seed S                seed of the starting noise (default 1)";
+    --seed S                seed of the starting noise (default 1)
+    --mix B.png --m M       a texture mixture (Heeger & Bergen §5): every subband's histogram,
+                            the colours and the colour axes M of the way from PHOTO's to B's
+                            (0: PHOTO's synthesis, 1: B's, when both allow the same scales)";
 
 pub const EVALUATE_HELP: &str = "\
 proctex evaluate A.png B.png [--json]

@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use proctex::Result;
-use proctex::heeger_bergen::{RasterOptions, synthesize_progress};
+use proctex::heeger_bergen::{RasterOptions, synthesize_mixture, synthesize_progress};
 use proctex::input::Crop;
 use proctex::limits::{self, quote};
 use proctex::render::Image;
@@ -15,6 +15,7 @@ use crate::write_png;
 
 pub(super) fn cmd_pyramid(mut a: Args) -> Result<()> {
     let (mut photo, mut out, mut crop) = (None, None, None);
+    let (mut mix, mut m) = (None, None);
     let (mut width, mut height) = (None, None);
     let mut opts = RasterOptions::new(0, 0);
     while let Some(arg) = a.next() {
@@ -31,6 +32,8 @@ pub(super) fn cmd_pyramid(mut a: Args) -> Result<()> {
             "--orientations" => opts.orientations = a.parsed(&arg)?,
             "--seed" => opts.seed = a.parsed(&arg)?,
             "--crop" => crop = Some(Crop::parse(&a.value(&arg)?)?),
+            "--mix" => mix = Some(a.value(&arg)?),
+            "--m" => m = Some(a.parsed::<f32>(&arg)?),
             f if f.starts_with('-') => {
                 return Err(usage(format!("pyramid: unknown option {}", quote(f))));
             }
@@ -59,12 +62,18 @@ pub(super) fn cmd_pyramid(mut a: Args) -> Result<()> {
     let limit = a
         .max_pixels
         .unwrap_or(proctex::heeger_bergen::MAX_SYNTHESIS_PIXELS);
+    let limit = (limit, limits::PAST_THE_LIMIT);
     let start = Instant::now();
-    let syn = synthesize_progress(&region, &opts, (limit, limits::PAST_THE_LIMIT), &|_, _| {
-        true
-    })
-    .map_err(|e| naming(&photo, e))?
-    .expect("the CLI never cancels");
+    let syn = match (mix, m) {
+        (Some(other), Some(m)) => {
+            let b = load_photo(&other, a.photo_pixels())?;
+            synthesize_mixture(&region, &b, m, &opts, limit)?
+        }
+        (None, None) => synthesize_progress(&region, &opts, limit, &|_, _| true)
+            .map_err(|e| naming(&photo, e))?
+            .expect("the CLI never cancels"),
+        _ => return Err(usage("pyramid: --mix B.png and --m M go together")),
+    };
     let ms = start.elapsed().as_secs_f64() * 1000.0;
     let img = Image {
         width: syn.width,
