@@ -2,24 +2,27 @@ use super::*;
 use crate::render::Image;
 use crate::seamless::seam_stats;
 
-/// A colour test texture that is not periodic on its grid: oriented stripes at a scale the
-/// pyramid resolves, blobs, grain and a gradient, in three correlated colours.
-fn sample(w: u32, h: u32) -> Photo {
-    let pixels = (0..w * h)
-        .map(|i| {
-            let (x, y) = ((i % w) as f32, (i / w) as f32);
-            let stripes = (0.45 * x + 0.2 * y).sin();
-            let blobs = (0.07 * x).sin() * (0.09 * y + 1.0).cos();
-            let grain = rng::gaussian(3, 5, i) as f32;
-            let v = 0.5 + 0.18 * stripes + 0.12 * blobs + 0.05 * grain + 0.001 * x;
-            [v, 0.8 * v + 0.05 * blobs, 0.6 * v - 0.04 * stripes].map(|c| c.clamp(0.0, 1.0))
-        })
-        .collect();
+/// A `w × h` photo whose pixel `i` at `(x, y)` is `f(x, y, i)`.
+fn photo_of(w: u32, h: u32, f: impl Fn(f32, f32, u32) -> [f32; 3]) -> Photo {
     Photo {
         width: w,
         height: h,
-        pixels,
+        pixels: (0..w * h)
+            .map(|i| f((i % w) as f32, (i / w) as f32, i))
+            .collect(),
     }
+}
+
+/// A colour test texture that is not periodic on its grid: oriented stripes at a scale the
+/// pyramid resolves, blobs, grain and a gradient, in three correlated colours.
+fn sample(w: u32, h: u32) -> Photo {
+    photo_of(w, h, |x, y, i| {
+        let stripes = (0.45 * x + 0.2 * y).sin();
+        let blobs = (0.07 * x).sin() * (0.09 * y + 1.0).cos();
+        let grain = rng::gaussian(3, 5, i) as f32;
+        let v = 0.5 + 0.18 * stripes + 0.12 * blobs + 0.05 * grain + 0.001 * x;
+        [v, 0.8 * v + 0.05 * blobs, 0.6 * v - 0.04 * stripes].map(|c| c.clamp(0.0, 1.0))
+    })
 }
 
 #[test]
@@ -163,23 +166,15 @@ fn the_stepwise_synthesis_is_the_same_synthesis() {
 
 /// A second test texture, unlike `sample`: blobs in other colours.
 fn other(w: u32, h: u32) -> Photo {
-    let pixels = (0..w * h)
-        .map(|i| {
-            let (x, y) = ((i % w) as f32, (i / w) as f32);
-            let blobs = (0.21 * x).cos() * (0.17 * y).sin();
-            let grain = rng::gaussian(9, 5, i) as f32;
-            [
-                0.3 + 0.1 * blobs,
-                0.5 + 0.15 * blobs + 0.03 * grain,
-                0.7 - 0.1 * blobs,
-            ]
-        })
-        .collect();
-    Photo {
-        width: w,
-        height: h,
-        pixels,
-    }
+    photo_of(w, h, |x, y, i| {
+        let blobs = (0.21 * x).cos() * (0.17 * y).sin();
+        let grain = rng::gaussian(9, 5, i) as f32;
+        [
+            0.3 + 0.1 * blobs,
+            0.5 + 0.15 * blobs + 0.03 * grain,
+            0.7 - 0.1 * blobs,
+        ]
+    })
 }
 
 #[test]
