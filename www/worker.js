@@ -373,11 +373,12 @@ async function handle(m) {
       return;
     }
     case 'benchPyramid': {
-      // e2e/bench: median milliseconds of the synthesis and of the FFTs it needs.
+      // e2e/bench: median milliseconds of the synthesis and of the FFTs it needs, and of a
+      // 64³ solid texture (once: seconds).
       const ms = {};
-      for (const stage of ['ffts', 'synthesis']) {
+      for (const stage of ['ffts', 'synthesis', 'solid']) {
         const t = [];
-        for (let i = 0; i < m.reps; i++) {
+        for (let i = 0; i < (stage === 'solid' ? 1 : m.reps); i++) {
           const s = performance.now();
           wasm.benchPyramid(m.rgba, m.width, m.height, stage);
           t.push(performance.now() - s);

@@ -5,7 +5,8 @@
 //! orientations, on every thread and on one, against the FFTs it needs (those of the sample's
 //! analysis and of every round's analysis and reconstruction, three channels, as plain rustfft
 //! 2D transforms timed one after another) and against the 1.5 s target; then the share of the
-//! steerable pyramid alone (one analysis and reconstruction of a 512² channel).
+//! steerable pyramid alone (one analysis and reconstruction of a 512² channel); then solid
+//! textures of 64³ and 128³ (one run each) against the 2D synthesis' time.
 //!
 //! Run: `cargo bench -p proctex-analyzer --bench pyramid` (add `-- --quick` for fewer
 //! repetitions, as CI does).
@@ -16,6 +17,7 @@ use std::hint::black_box;
 
 use common::{median_time, ms};
 
+use proctex::heeger_bergen::solid::{SolidOptions, synthesize_solid};
 use proctex::heeger_bergen::{RasterOptions, synthesize, transforms};
 use proctex::input::Photo;
 use proctex::pyramid::Plan;
@@ -86,4 +88,27 @@ fn main() {
         ms(pyramid),
         plan.analysis_transforms().len() + plan.synthesis_transforms().len()
     );
+    // Solid textures (HB §4) from the sample's top-left 256² (one run each: seconds).
+    let crop = photo
+        .crop(proctex::input::Crop {
+            x: 0,
+            y: 0,
+            w: 256,
+            h: 256,
+        })
+        .expect("crop");
+    for n in [64u32, 128] {
+        let opts = SolidOptions {
+            n,
+            ..SolidOptions::default()
+        };
+        let start = std::time::Instant::now();
+        black_box(synthesize_solid(&crop, &opts, &|_, _| true).unwrap());
+        let t = start.elapsed();
+        println!(
+            "  solid {n}³ from a 256² crop, 5 iterations, every thread: {:.0} ms ({:.2}× the 2D synthesis of 512²)",
+            ms(t),
+            ms(t) / ms(all)
+        );
+    }
 }

@@ -21,6 +21,8 @@
 //! deterministic (native runs the three channels in parallel, each alone, so the bits do not
 //! depend on the threads).
 
+pub mod solid;
+
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use rustfft::num_complex::Complex32;
@@ -91,26 +93,28 @@ impl RasterOptions {
             max_pixels,
             past,
         )?;
-        if self.iterations > MAX_ITERATIONS {
-            return Err(Error::Option(format!(
-                "--iterations {} is over {MAX_ITERATIONS}",
-                self.iterations
-            )));
-        }
-        if !(1..=MAX_SCALES).contains(&self.scales) {
-            return Err(Error::Option(format!(
-                "--scales {} is not between 1 and {MAX_SCALES}",
-                self.scales
-            )));
-        }
-        if !(1..=MAX_ORIENTATIONS as u32).contains(&self.orientations) {
-            return Err(Error::Option(format!(
-                "--orientations {} is not between 1 and {MAX_ORIENTATIONS}",
-                self.orientations
-            )));
-        }
-        Ok(())
+        check_loop(self.iterations, self.scales, self.orientations)
     }
+}
+
+/// Refuses loop options out of range, saying which and what is allowed.
+fn check_loop(iterations: u32, scales: u32, orientations: u32) -> Result<()> {
+    if iterations > MAX_ITERATIONS {
+        return Err(Error::Option(format!(
+            "--iterations {iterations} is over {MAX_ITERATIONS}"
+        )));
+    }
+    if !(1..=MAX_SCALES).contains(&scales) {
+        return Err(Error::Option(format!(
+            "--scales {scales} is not between 1 and {MAX_SCALES}"
+        )));
+    }
+    if !(1..=MAX_ORIENTATIONS as u32).contains(&orientations) {
+        return Err(Error::Option(format!(
+            "--orientations {orientations} is not between 1 and {MAX_ORIENTATIONS}"
+        )));
+    }
+    Ok(())
 }
 
 /// Most pixels a synthesis may have by default: a pyramid of `w × h` holds about seven floats
@@ -325,34 +329,44 @@ pub fn scales_for(sample: (usize, usize), output: (usize, usize), requested: u32
         .min(max_scales(output.0, output.1))
 }
 
-/// Prepares `photo` for synthesis with a pyramid of `scales` scales and `orientations`.
-pub fn prepare(photo: &Photo, scales: usize, orientations: usize) -> PreparedSample {
+/// The photo's colour axes (PCA of its periodic component) and its decorrelated channels:
+/// the periodic component's values along each axis, the mean removed.
+fn decorrelated(photo: &Photo) -> (crate::colour::Pca, [Vec<f32>; 3]) {
     let (w, h) = (photo.width as usize, photo.height as usize);
-    let rgb: [Vec<f32>; 3] =
-        std::array::from_fn(|c| photo.pixels.iter().map(|p| p[c]).collect::<Vec<f32>>());
-    let periodic: [Vec<f32>; 3] = std::array::from_fn(|c| periodic_component(&rgb[c], w, h));
+    let periodic: [Vec<f32>; 3] = std::array::from_fn(|c| {
+        let channel: Vec<f32> = photo.pixels.iter().map(|p| p[c]).collect();
+        periodic_component(&channel, w, h)
+    });
     let pixels: Vec<[f32; 3]> = (0..w * h)
         .map(|i| [periodic[0][i], periodic[1][i], periodic[2][i]])
         .collect();
     let colour = pca(&pixels);
-    let plan = Plan::new(w, h, scales, orientations);
     let channels = std::array::from_fn(|j| {
         let axis = colour.basis[j];
-        let values: Vec<f32> = pixels
+        pixels
             .iter()
             .map(|p| {
                 (0..3)
                     .map(|k| axis[k] * (p[k] as f64 - colour.mean[k]))
                     .sum::<f64>() as f32
             })
-            .collect();
-        ChannelTargets::of(&values, &plan)
+            .collect()
     });
+    (colour, channels)
+}
+
+/// Prepares `photo` for synthesis with a pyramid of `scales` scales and `orientations`.
+pub fn prepare(photo: &Photo, scales: usize, orientations: usize) -> PreparedSample {
+    let (w, h) = (photo.width as usize, photo.height as usize);
+    let (colour, channels) = decorrelated(photo);
+    let plan = Plan::new(w, h, scales, orientations);
     PreparedSample {
         mean: colour.mean,
         basis: colour.basis,
-        channels,
-        rgb: rgb.map(|v| sorted(&v)),
+        channels: channels.map(|c| ChannelTargets::of(&c, &plan)),
+        rgb: std::array::from_fn(|c| {
+            sorted(&photo.pixels.iter().map(|p| p[c]).collect::<Vec<f32>>())
+        }),
     }
 }
 

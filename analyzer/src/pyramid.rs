@@ -118,7 +118,7 @@ fn signed(k: usize, n: usize) -> i64 {
 }
 
 /// Radial low-pass `L(r)`.
-fn low(r: f64) -> f64 {
+pub fn radial_low(r: f64) -> f64 {
     use std::f64::consts::PI;
     let t = (4.0 * r / PI).log2();
     if t <= 0.0 {
@@ -131,7 +131,7 @@ fn low(r: f64) -> f64 {
 }
 
 /// Radial high-pass `H(r)`, `H² + L² = 1`.
-fn high(r: f64) -> f64 {
+pub fn radial_high(r: f64) -> f64 {
     use std::f64::consts::PI;
     let t = (4.0 * r / PI).log2();
     if t <= 0.0 {
@@ -255,7 +255,7 @@ impl Plan {
                 .map(|k| {
                     let phi = std::f64::consts::PI * k as f64 / kk;
                     mask(lw, lh, |r, t| {
-                        high(r) * a * (t - phi).cos().abs().powi(orientations as i32 - 1)
+                        radial_high(r) * a * (t - phi).cos().abs().powi(orientations as i32 - 1)
                     })
                 })
                 .collect();
@@ -263,15 +263,15 @@ impl Plan {
                 w: lw,
                 h: lh,
                 bands,
-                low: mask(lw, lh, |r, _| low(r)),
+                low: mask(lw, lh, |r, _| radial_low(r)),
             });
             (lw, lh) = (lw.div_ceil(2), lh.div_ceil(2));
         }
         Plan {
             width: w,
             height: h,
-            high0: mask(w, h, |r, _| high(r / 2.0)),
-            low0: mask(w, h, |r, _| low(r / 2.0)),
+            high0: mask(w, h, |r, _| radial_high(r / 2.0)),
+            low0: mask(w, h, |r, _| radial_low(r / 2.0)),
             levels,
             bottom: (lw, lh),
         }

@@ -520,6 +520,34 @@ fn pyramid_writes_a_texture_of_any_size_and_refuses_bad_options() {
         let o = proctex(&all);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
     }
+    // A solid texture: N slices of N², in a directory made for them.
+    let dir = tmp("solid-slices");
+    let o = proctex(&[
+        "pyramid",
+        &photo,
+        "--solid",
+        "16",
+        "-o",
+        &dir,
+        "--iterations",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let slices = std::fs::read_dir(&dir).unwrap().count();
+    assert_eq!(slices, 16);
+    let s = proctex::input::Photo::decode(&std::fs::read(format!("{dir}/slice_015.png")).unwrap())
+        .unwrap();
+    assert_eq!((s.width, s.height), (16, 16));
+    for args in [
+        vec!["--solid", "8"],
+        vec!["--solid", "300"],
+        vec!["--solid", "32", "--width", "64"],
+    ] {
+        let mut all = vec!["pyramid", photo.as_str(), "-o", dir.as_str()];
+        all.extend(args.iter().copied());
+        let o = proctex(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    }
     // Too large an output is bad input (1), as a too large render is.
     let o = proctex(&[
         "pyramid", &photo, "-o", &b, "--width", "8000", "--height", "8000",

@@ -282,8 +282,8 @@ pub fn bench_retrieval(rgba: &[u8], width: u32, height: u32, stage: &str) -> Res
 
 /// Benchmark job (e2e/bench; the JS side times each call): the Heeger–Bergen synthesis of an
 /// RGBA image at its own size with the paper's defaults (`stage` `"synthesis"`), or the 2D
-/// FFTs that synthesis runs, as plain transforms one after another (`"ffts"`, the cost floor).
-/// Returns a checksum.
+/// FFTs that synthesis runs, as plain transforms one after another (`"ffts"`, the cost floor),
+/// or a 64³ solid texture from the image (`"solid"`, Heeger & Bergen §4). Returns a checksum.
 #[wasm_bindgen(js_name = benchPyramid)]
 pub fn bench_pyramid(rgba: &[u8], width: u32, height: u32, stage: &str) -> Result<f64, JsValue> {
     use proctex::heeger_bergen::{RasterOptions, synthesize, transforms};
@@ -302,7 +302,14 @@ pub fn bench_pyramid(rgba: &[u8], width: u32, height: u32, stage: &str) -> Resul
             }
             Ok(sum)
         }
-        _ => Err(JsValue::from_str("stage must be synthesis or ffts")),
+        "solid" => {
+            use proctex::heeger_bergen::solid::{SolidOptions, synthesize_solid};
+            let v = synthesize_solid(&photo, &SolidOptions::default(), &|_, _| true)
+                .map_err(js_error)?
+                .expect("never cancelled");
+            Ok(v.voxels.iter().map(|p| p[0] as f64).sum())
+        }
+        _ => Err(JsValue::from_str("stage must be synthesis, ffts or solid")),
     }
 }
 

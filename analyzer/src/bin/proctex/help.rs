@@ -86,6 +86,8 @@ at the photo's scale. Accepts the options of `analyze`.";
 pub const PYRAMID_HELP: &str = "\
 proctex pyramid PHOTO -o OUT.png [--width W --height H] [--iterations N] [--scales S]
                 [--orientations K] [--seed S] [--crop X,Y,W,H] [--mix B.png --m M]
+proctex pyramid PHOTO --solid N -o OUT_DIR [--iterations N] [--scales S] [--orientations K]
+                [--seed S] [--crop X,Y,W,H]
 
 Synthesises a raster texture like PHOTO (or the crop) with Heeger & Bergen's pyramid-based
 synthesis (1995): noise whose every steerable-pyramid subband, both residuals included, is
@@ -99,7 +101,10 @@ channel matched to PHOTO's. The output tiles seamlessly and may have any size.
     --seed S                seed of the starting noise (default 1)
     --mix B.png --m M       a texture mixture (Heeger & Bergen §5): every subband's histogram,
                             the colours and the colour axes M of the way from PHOTO's to B's
-                            (0: PHOTO's synthesis, 1: B's, when both allow the same scales)";
+                            (0: PHOTO's synthesis, 1: B's, when both allow the same scales)
+    --solid N               a solid texture (Heeger & Bergen §4): an N³ volume (16 to 128,
+                            64 usual) any slice of which looks like PHOTO, written as N PNG
+                            slices along z (OUT_DIR/slice_000.png …); it tiles in 3D";
 
 pub const EVALUATE_HELP: &str = "\
 proctex evaluate A.png B.png [--json]

@@ -2,9 +2,12 @@
 
 use std::time::Instant;
 
+use proctex::Error;
 use proctex::Result;
+use proctex::heeger_bergen::solid::{SolidOptions, synthesize_solid};
 use proctex::heeger_bergen::{RasterOptions, synthesize_mixture, synthesize_progress};
 use proctex::input::Crop;
+use proctex::input::Photo;
 use proctex::limits::{self, quote};
 use proctex::render::Image;
 
@@ -16,6 +19,7 @@ use crate::write_png;
 pub(super) fn cmd_pyramid(mut a: Args) -> Result<()> {
     let (mut photo, mut out, mut crop) = (None, None, None);
     let (mut mix, mut m) = (None, None);
+    let mut solid = None;
     let (mut width, mut height) = (None, None);
     let mut opts = RasterOptions::new(0, 0);
     while let Some(arg) = a.next() {
@@ -33,6 +37,7 @@ pub(super) fn cmd_pyramid(mut a: Args) -> Result<()> {
             "--seed" => opts.seed = a.parsed(&arg)?,
             "--crop" => crop = Some(Crop::parse(&a.value(&arg)?)?),
             "--mix" => mix = Some(a.value(&arg)?),
+            "--solid" => solid = Some(a.parsed::<u32>(&arg)?),
             "--m" => m = Some(a.parsed::<f32>(&arg)?),
             f if f.starts_with('-') => {
                 return Err(usage(format!("pyramid: unknown option {}", quote(f))));
@@ -48,7 +53,32 @@ pub(super) fn cmd_pyramid(mut a: Args) -> Result<()> {
     }
     let photo =
         photo.ok_or_else(|| usage("pyramid: which photo? (proctex pyramid PHOTO -o OUT.png)"))?;
-    let out = out.ok_or_else(|| usage("pyramid: -o OUT.png is required"))?;
+    let out =
+        out.ok_or_else(|| usage("pyramid: -o OUT.png (or OUT_DIR with --solid) is required"))?;
+    if let Some(n) = solid {
+        if mix.is_some() || m.is_some() || width.is_some() || height.is_some() {
+            return Err(usage(
+                "pyramid --solid: no --mix, --m, --width or --height (the volume is N³)",
+            ));
+        }
+        let decoded = load_photo(&photo, a.photo_pixels())?;
+        let region = match crop {
+            Some(c) => decoded.crop(c)?,
+            None => decoded,
+        };
+        return write_solid(
+            &region,
+            &photo,
+            &out,
+            &SolidOptions {
+                n,
+                iterations: opts.iterations,
+                scales: opts.scales,
+                orientations: opts.orientations,
+                seed: opts.seed,
+            },
+        );
+    }
     if !out.to_ascii_lowercase().ends_with(".png") {
         return Err(usage(format!("{out}: output must be a .png file")));
     }
@@ -84,6 +114,36 @@ pub(super) fn cmd_pyramid(mut a: Args) -> Result<()> {
     println!(
         "wrote {out} ({}×{}, {} iterations, {:.0} ms)",
         img.width, img.height, opts.iterations, ms
+    );
+    Ok(())
+}
+
+/// The solid texture of `region` as `n` PNG slices (`slice_000.png`, … along z) in `dir`.
+fn write_solid(region: &Photo, photo: &str, dir: &str, opts: &SolidOptions) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::Io {
+        path: quote(dir),
+        message: e.to_string(),
+    })?;
+    let start = Instant::now();
+    let volume = synthesize_solid(region, opts, &|_, _| true)
+        .map_err(|e| naming(photo, e))?
+        .expect("the CLI never cancels");
+    let ms = start.elapsed().as_secs_f64() * 1000.0;
+    for z in 0..volume.n {
+        let slice = volume.slice_z(z);
+        let img = Image {
+            width: slice.width,
+            height: slice.height,
+            pixels: slice.pixels,
+        };
+        write_png(&format!("{dir}/slice_{z:03}.png"), &img, false)?;
+    }
+    println!(
+        "wrote {dir}/slice_000.png … slice_{:03}.png ({n}³, {} iterations, {:.0} ms)",
+        volume.n - 1,
+        opts.iterations,
+        ms,
+        n = volume.n
     );
     Ok(())
 }
