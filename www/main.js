@@ -77,9 +77,12 @@ let pyramidJob = 0; // the Heeger–Bergen synthesis the app waits for (0: none)
 
 // The Heeger–Bergen synthesis of crop [x, y, w, h] of the current photo, for the app's
 // pyramid view; a new one supersedes the one running (which is cancelled).
-async function synthesisePyramid(x, y, w, h, seed) {
+// `mix`: absent, or JSON { sample: name | params: json, m } for a texture mixture.
+async function synthesisePyramid(x, y, w, h, seed, mix) {
   if (pyramidJob) worker.postMessage({ type: 'cancelPyramid' });
-  const [id, reply] = job({ type: 'pyramid', crop: [x, y, w, h], seed });
+  const [id, reply] = job({
+    type: 'pyramid', crop: [x, y, w, h], seed, mix: mix ? JSON.parse(mix) : undefined,
+  });
   pyramidJob = id;
   const m = await reply;
   if (m.id !== pyramidJob) return;
@@ -451,7 +454,7 @@ window.proctexHost = {
     if (m.type === 'error' && suggestJob === id) wasm.suggestionsFailed(m.message);
   },
   cancelSuggestions: () => worker.postMessage({ type: 'cancelSuggest' }),
-  synthesisePyramid: (x, y, w, h, seed) => { synthesisePyramid(x, y, w, h, seed); },
+  synthesisePyramid: (x, y, w, h, seed, mix) => { synthesisePyramid(x, y, w, h, seed, mix); },
   cancelPyramid: () => worker.postMessage({ type: 'cancelPyramid' }),
   downloadPng: (name, rgba, width, height) => {
     downloadPng(name, rgba, width, height).catch((e) => wasm.reportError(`PNG: ${e}`));
@@ -486,6 +489,9 @@ window.proctex = {
   setParams: (json) => wasm.setParams(typeof json === 'string' ? json : JSON.stringify(json)),
   setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
   setViewMode: (mode) => wasm.setViewMode(mode),
+  // The pyramid view's texture mixture: `source` 'sample:NAME' or 'preset:NAME' (null: none),
+  // `m` from 0 (the photo's synthesis) to 1 (the source's).
+  setPyramidMix: (source, m) => wasm.setPyramidMix(source ?? undefined, m ?? 0),
   setFlatShader: (on) => wasm.setFlatShader(on),
   setFrameCache: (on) => wasm.setFrameCache(on),
   setViewLimit: (width, height) => wasm.setViewLimit(width, height),

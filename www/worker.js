@@ -344,8 +344,16 @@ async function handle(m) {
       // The Heeger–Bergen synthesis of the current photo's crop, one round per macrotask, so
       // that Cancel ('cancelPyramid', not queued) gets in between rounds.
       if (!photo) throw new Error('no photo to synthesise from');
-      const job = new wasm.PyramidSynthesis(photo.rgba, photo.width, photo.height,
-        new Uint32Array(m.crop), m.seed);
+      const crop = new Uint32Array(m.crop);
+      let job;
+      if (m.mix) {
+        // A texture mixture with a shipped sample photo or a preset's texture (rendered here).
+        const b = await mixtureSource(m.mix);
+        job = wasm.PyramidSynthesis.mixture(photo.rgba, photo.width, photo.height, crop, m.seed,
+          b.rgba, b.width, b.height, m.mix.m);
+      } else {
+        job = new wasm.PyramidSynthesis(photo.rgba, photo.width, photo.height, crop, m.seed);
+      }
       pyramid = { id: m.id, cancelled: false };
       const mine = pyramid;
       try {
@@ -409,6 +417,23 @@ async function handle(m) {
     default:
       throw new Error(`unknown job ${m.type}`);
   }
+}
+
+// The second texture of a mixture: a shipped sample photo ({ sample: name }) or a preset's
+// texture ({ params: json }, rendered on the CPU at 256²), as RGBA.
+const MIX_PRESET_SIDE = 256;
+async function mixtureSource(mix) {
+  if (mix.sample) {
+    const r = await fetch(new URL(`./samples/${mix.sample}`, import.meta.url));
+    if (!r.ok) throw new Error(`${mix.sample}: HTTP ${r.status}`);
+    const bitmap = await decode(new Uint8Array(await r.arrayBuffer()));
+    const { width, height } = bitmap;
+    const rgba = pixelsOf(bitmap);
+    bitmap.close();
+    return { rgba, width, height };
+  }
+  const rgba = wasm.previewRgba(mix.params, MIX_PRESET_SIDE, MIX_PRESET_SIDE);
+  return { rgba, width: MIX_PRESET_SIDE, height: MIX_PRESET_SIDE };
 }
 
 // The running pyramid synthesis ({ id, cancelled }), for 'cancelPyramid'.

@@ -305,8 +305,22 @@ pub fn synthesize_mixture(
     b: &Photo,
     m: f32,
     opts: &RasterOptions,
-    (max_pixels, past): (u64, &str),
+    limit: (u64, &str),
 ) -> Result<Photo> {
+    let (sample, scales) = mixed_sample(a, b, m, opts, limit)?;
+    let output = (opts.width as usize, opts.height as usize);
+    Ok(synthesize_prepared(&sample, output, scales, opts, &|_, _| true).expect("never cancelled"))
+}
+
+/// The mixed sample of [`synthesize_mixture`] and the scales it was prepared with (the most
+/// both photos and the output allow).
+fn mixed_sample(
+    a: &Photo,
+    b: &Photo,
+    m: f32,
+    opts: &RasterOptions,
+    (max_pixels, past): (u64, &str),
+) -> Result<(PreparedSample, usize)> {
     if !(0.0..=1.0).contains(&m) {
         return Err(Error::Option(format!("--m {m} is not between 0 and 1")));
     }
@@ -318,8 +332,10 @@ pub fn synthesize_mixture(
     let scales =
         scales_for(size(a), output, opts.scales).min(scales_for(size(b), output, opts.scales));
     let k = opts.orientations as usize;
-    let sample = mix(&prepare(a, scales, k), &prepare(b, scales, k), m);
-    Ok(synthesize_prepared(&sample, output, scales, opts, &|_, _| true).expect("never cancelled"))
+    Ok((
+        mix(&prepare(a, scales, k), &prepare(b, scales, k), m),
+        scales,
+    ))
 }
 
 /// Scales used for a sample of `sample` size and an output of `output` size.
@@ -518,17 +534,40 @@ impl Synthesis {
             opts.scales,
         );
         let sample = prepare(photo, scales, opts.orientations as usize);
-        let plan = Plan::new(output.0, output.1, scales, opts.orientations as usize);
+        Ok(Synthesis::of_sample(sample, scales, opts))
+    }
+
+    /// The mixture `m` of the way from `a`'s synthesis to `b`'s ([`mix`]; checks as
+    /// [`synthesize_mixture`]), one round at a time: the same bits as
+    /// [`synthesize_mixture`].
+    pub fn mixture(
+        a: &Photo,
+        b: &Photo,
+        m: f32,
+        opts: &RasterOptions,
+        limit: (u64, &str),
+    ) -> Result<Synthesis> {
+        let (sample, scales) = mixed_sample(a, b, m, opts, limit)?;
+        Ok(Synthesis::of_sample(sample, scales, opts))
+    }
+
+    fn of_sample(sample: PreparedSample, scales: usize, opts: &RasterOptions) -> Synthesis {
+        let plan = Plan::new(
+            opts.width as usize,
+            opts.height as usize,
+            scales,
+            opts.orientations as usize,
+        );
         let channels = (0..3)
             .map(|j| start_channel(&sample.channels[j], &plan, (opts.seed, stream(j))))
             .collect();
-        Ok(Synthesis {
+        Synthesis {
             sample,
             plan,
             iterations: opts.iterations as usize,
             channels,
             done: 0,
-        })
+        }
     }
 
     /// Rounds in all (three channels × the iterations).

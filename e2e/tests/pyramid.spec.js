@@ -3,11 +3,18 @@
 // photo, and downloadable as a PNG tile.
 const { test } = require('@playwright/test');
 const {
-  expect, openApp, state, waitFrames, grab, channelStats, clickWidget, innerSquare, waitAnalyses,
+  expect, openApp, state, waitFrames, grab, channelStats, clickWidget, waitAnalyses,
 } = require('./helpers');
 
-// Three panes of 192 CSS px, each wide enough for a 160² grab.
-const VIEW = [576, 200];
+// Three panes of 192 × 288 CSS px: a 160² grab at the top of each stays clear of the controls
+// at the bottom of the synthesis pane ("Mix with", m, Cancel / Download).
+const VIEW = [576, 288];
+
+// The 160² square at the top of a pane, centred across it.
+function upper(rect) {
+  const [x, y, w] = rect;
+  return [Math.ceil(x) + Math.floor((w - 160) / 2), Math.ceil(y) + 4, 160, 160];
+}
 
 // Waits until the pyramid view has finished `n` syntheses in all.
 async function waitSyntheses(page, n) {
@@ -23,8 +30,8 @@ async function waitSyntheses(page, n) {
 // colours agree with the photo's, and it is not the photo's pixels.
 async function expectSynthesisOfPhoto(page) {
   const s = await state(page);
-  const photo = await grab(page, innerSquare(s.widgets['pyramid.photo'], 160));
-  const syn = await grab(page, innerSquare(s.widgets['pyramid.synthesis'], 160));
+  const photo = await grab(page, upper(s.widgets['pyramid.photo']));
+  const syn = await grab(page, upper(s.widgets['pyramid.synthesis']));
   const [ps, ss] = [channelStats(photo), channelStats(syn)];
   for (let c = 0; c < 3; c++) {
     expect(ss[c].sd).toBeGreaterThan(0.4 * ps[c].sd);
@@ -87,3 +94,46 @@ test('Cancel stops the pyramid synthesis, and it can run again', async ({ page }
   await waitSyntheses(page, 1);
   await expectSynthesisOfPhoto(page);
 });
+
+test('the mixture slider at 0 and 1 gives the two syntheses', async ({ page }) => {
+  await openApp(page, { view: VIEW });
+  await clickWidget(page, 'mode.pyramid');
+  await waitSyntheses(page, 1);
+  let s = await state(page);
+  const own = s.pyramid.checksum;
+  expect(s.widgets['pyramid.mix']).toBeTruthy(); // "Mix with", over the synthesis
+  const gravel = 'sample:skimage_gravel_512.png';
+  const mixAt = async (m, n) => {
+    await page.evaluate(([src, t]) => window.proctex.setPyramidMix(src, t), [gravel, m]);
+    await waitSyntheses(page, n);
+    const p = (await state(page)).pyramid;
+    expect(p.mix).toEqual([gravel, m]);
+    return p.checksum;
+  };
+  expect(await mixAt(0, 2)).toBe(own);
+  const towardsGravel = await mixAt(1, 3);
+  const halfway = await mixAt(0.5, 4);
+  expect(halfway).not.toBe(own);
+  expect(halfway).not.toBe(towardsGravel);
+  s = await state(page);
+  expect(s.widgets['pyramid.m']).toBeTruthy();
+  await expectSynthesisOfPhotoColours(page, 30);
+  // m = 1 is the gravel photo's own synthesis (both photos are 512²: the same size).
+  await page.evaluate(() => window.proctex.setPyramidMix(null, 0));
+  const before = s.analyses;
+  await page.evaluate(() => window.proctex.loadSample('skimage_gravel_512.png'));
+  await waitAnalyses(page, before + 1);
+  await waitSyntheses(page, 5);
+  s = await state(page);
+  expect(s.pyramid.of[0]).toBe('skimage_gravel_512.png');
+  expect(s.pyramid.mix).toBeNull();
+  expect(s.pyramid.checksum).toBe(towardsGravel);
+});
+
+// The synthesis pane is a real texture (it varies), whatever it mixes.
+async function expectSynthesisOfPhotoColours(page, minSd) {
+  const s = await state(page);
+  const syn = channelStats(await grab(page, upper(s.widgets['pyramid.synthesis'])));
+  const sd = syn.reduce((a, c) => a + c.sd, 0) / 3;
+  expect(sd).toBeGreaterThan(minSd / 10);
+}

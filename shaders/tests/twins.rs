@@ -7,7 +7,11 @@ const TWIN_FILES: [(&str, &[&str]); 16] = [
     ("pattern.wgsl", &["analyzer/src/render/pattern.rs"]),
     (
         "morph.wgsl",
-        &["analyzer/src/morph.rs", "analyzer/src/histogram.rs"],
+        &[
+            "analyzer/src/morph.rs",
+            "analyzer/src/colour.rs",
+            "analyzer/src/histogram.rs",
+        ],
     ),
     ("tile3.wgsl", &["analyzer/src/noise.rs"]),
     ("tile3_atlas.wgsl", &["analyzer/src/noise.rs"]),

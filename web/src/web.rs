@@ -195,9 +195,29 @@ pub fn model_stats_done(params_json: String, stats_json: String) -> Result<(), J
 /// Switches the view: "plane", "split", "sphere" or "cube".
 #[wasm_bindgen(js_name = setViewMode)]
 pub fn set_view_mode(mode: String) -> Result<(), JsValue> {
-    let m = ViewMode::parse(&mode)
-        .ok_or_else(|| JsValue::from_str("view mode must be plane, split, sphere or cube"))?;
+    let m = ViewMode::parse(&mode).ok_or_else(|| {
+        JsValue::from_str("view mode must be plane, split, pyramid, sphere or cube")
+    })?;
     send(Command::SetMode(m));
+    Ok(())
+}
+
+/// The pyramid view's texture mixture: `source` `sample:NAME` (a shipped sample photo) or
+/// `preset:NAME` (a preset's texture), or absent for none; `m` from 0 (the photo's synthesis)
+/// to 1 (the source's).
+#[wasm_bindgen(js_name = setPyramidMix)]
+pub fn set_pyramid_mix(source: Option<String>, m: f32) -> Result<(), JsValue> {
+    if !(0.0..=1.0).contains(&m) {
+        return Err(JsValue::from_str("m must be between 0 and 1"));
+    }
+    if let Some(s) = &source
+        && !(s.starts_with("sample:") || s.starts_with("preset:"))
+    {
+        return Err(JsValue::from_str(
+            "source must be sample:NAME or preset:NAME",
+        ));
+    }
+    send(Command::SetPyramidMix(source.map(|s| (s, m))));
     Ok(())
 }
 

@@ -225,3 +225,19 @@ fn the_quantile_mixture_of_sorted_values_is_sorted_and_exact_at_the_ends() {
     assert_eq!(mix_sorted(&b, &a, 0.0), b);
     assert_eq!(mix_sorted(&a, &b, 1.0), b);
 }
+
+#[test]
+fn the_stepwise_mixture_is_the_same_mixture() {
+    let (a, b) = (sample(64, 64), other(48, 56));
+    let opts = RasterOptions {
+        iterations: 2,
+        ..RasterOptions::new(64, 40)
+    };
+    let limit = (MAX_SYNTHESIS_PIXELS, "");
+    let mut s = Synthesis::mixture(&a, &b, 0.4, &opts, limit).unwrap();
+    while s.step() {}
+    assert_eq!(
+        s.photo(),
+        synthesize_mixture(&a, &b, 0.4, &opts, limit).unwrap()
+    );
+}

@@ -97,6 +97,8 @@ pub enum Command {
     PyramidCancelled,
     /// The pyramid synthesis failed.
     PyramidFailed(String),
+    /// The pyramid view's mixture: source (`sample:NAME` or `preset:NAME`) and m; `None`: none.
+    SetPyramidMix(Option<(String, f32)>),
     /// PNG tile export choices: side, bits (8 or 16), CPU even with a GPU.
     TileOptions {
         size: u32,
@@ -272,6 +274,7 @@ impl ProctexApp {
                 Command::PyramidDone { rgba, size, ms } => self.pyramid_done(ctx, rgba, size, ms),
                 Command::PyramidCancelled => self.pyramid_stopped(None),
                 Command::PyramidFailed(e) => self.pyramid_stopped(Some(e)),
+                Command::SetPyramidMix(mix) => self.set_pyramid_mix(mix),
                 Command::ModelStats(stats) => {
                     let (p, s) = *stats;
                     self.model_stats = Some((p, s));

@@ -3,21 +3,31 @@
 //! al. Fig. 16 set a procedural texture beside a raster synthesis). The synthesis runs in the
 //! worker (`proctexHost.synthesisePyramid`, one round per step, with progress and Cancel)
 //! whenever this view shows a photo or crop it has not synthesised yet; it tiles seamlessly, so
-//! it is drawn repeated across the window, and it downloads as a PNG tile.
+//! it is drawn repeated across the window, and it downloads as a PNG tile. A texture mixture
+//! (Heeger & Bergen §5) with a shipped sample or a preset's texture runs the same way: "Mix
+//! with" picks the second texture, the slider how far towards it (0: the crop's synthesis, 1:
+//! the other's).
 
 use eframe::egui;
 use proctex::params::Params;
 use proctex::render::View;
 use wasm_bindgen::JsValue;
 
-use super::{ProctexApp, host};
+use super::{ProctexApp, SAMPLES, host};
 use crate::renderer::Pass;
+
+/// What a synthesis is of: the photo, the crop, and the mixture (source and m), if any.
+type Key = (String, [u32; 4], Option<(String, f32)>);
 
 /// The synthesis shown (or being made) and what it is of.
 #[derive(Default)]
 pub(super) struct PyramidState {
-    /// The photo and crop of the synthesis shown or running.
-    key: Option<(String, [u32; 4])>,
+    /// What the synthesis shown or running is of.
+    key: Option<Key>,
+    /// The mixture asked for: source (`sample:NAME` or `preset:NAME`) and m.
+    mix: Option<(String, f32)>,
+    /// The mixture slider's value while it is dragged (applied on release).
+    slider: f32,
     texture: Option<egui::TextureHandle>,
     rgba: Vec<u8>,
     size: [u32; 2],
@@ -50,6 +60,10 @@ pub struct PyramidSnapshot {
     pub finished: u64,
     /// The photo and crop the synthesis shown is of.
     pub of: Option<(String, [u32; 4])>,
+    /// The mixture the synthesis shown is of: source and m.
+    pub mix: Option<(String, f32)>,
+    /// FNV-1a hash of the synthesis' RGBA (tests compare syntheses by it).
+    pub checksum: Option<u32>,
 }
 
 impl PyramidState {
@@ -62,12 +76,34 @@ impl PyramidState {
             cancelled: self.cancelled,
             error: self.error.clone(),
             finished: self.finished,
-            of: self.texture.as_ref().and(self.key.clone()),
+            of: self
+                .texture
+                .as_ref()
+                .and(self.key.as_ref().map(|k| (k.0.clone(), k.1))),
+            mix: self
+                .texture
+                .as_ref()
+                .and(self.key.as_ref())
+                .and_then(|k| k.2.clone()),
+            checksum: self.texture.as_ref().map(|_| fnv1a(&self.rgba)),
         }
     }
 }
 
+/// FNV-1a, 32 bits.
+fn fnv1a(bytes: &[u8]) -> u32 {
+    bytes.iter().fold(0x811c_9dc5u32, |h, &b| {
+        (h ^ b as u32).wrapping_mul(0x0100_0193)
+    })
+}
+
 impl ProctexApp {
+    /// Sets (or clears) the mixture; the view synthesises it when it shows.
+    pub(super) fn set_pyramid_mix(&mut self, mix: Option<(String, f32)>) {
+        self.pyramid.slider = mix.as_ref().map_or(0.5, |m| m.1);
+        self.pyramid.mix = mix;
+    }
+
     pub(super) fn pyramid_progress(&mut self, done: u32, total: u32) {
         if self.pyramid.running {
             self.pyramid.progress = Some((done, total));
@@ -106,27 +142,53 @@ impl ProctexApp {
         p.error = error.map(|e| proctex::limits::bounded_message(&e));
     }
 
-    /// The current photo and crop.
-    fn pyramid_key(&self) -> Option<(String, [u32; 4])> {
-        self.photo.as_ref().map(|p| (p.name.clone(), p.crop))
+    /// What the view should show: the current photo and crop, and the mixture.
+    fn pyramid_key(&self) -> Option<Key> {
+        self.photo
+            .as_ref()
+            .map(|p| (p.name.clone(), p.crop, self.pyramid.mix.clone()))
+    }
+
+    /// The mixture's second texture for the worker, as JSON: `{"sample": NAME, "m": m}` or
+    /// `{"params": JSON, "m": m}`.
+    fn mix_source(&self, (source, m): &(String, f32)) -> Result<String, String> {
+        if let Some(name) = source.strip_prefix("sample:") {
+            return Ok(serde_json::json!({ "sample": name, "m": m }).to_string());
+        }
+        let name = source.strip_prefix("preset:").unwrap_or(source);
+        let p = &self.presets;
+        let preset = p
+            .list
+            .iter()
+            .chain(p.gallery.iter().map(|(g, _)| g))
+            .find(|x| x.name == name)
+            .ok_or_else(|| format!("no preset named {}", proctex::limits::quote(name)))?;
+        Ok(serde_json::json!({ "params": preset.params.to_json(), "m": m }).to_string())
     }
 
     /// Asks the worker for the synthesis of the current crop.
     fn request_pyramid(&mut self) {
-        let Some((name, crop)) = self.pyramid_key() else {
+        let Some(key) = self.pyramid_key() else {
             return;
         };
-        let args: Vec<JsValue> = crop
-            .iter()
-            .map(|&v| JsValue::from(v))
-            .chain([1.into()])
-            .collect();
+        let mut args: Vec<JsValue> = key.1.iter().map(|&v| JsValue::from(v)).collect();
+        args.push(1.into()); // the seed
+        match key.2.as_ref().map(|mix| self.mix_source(mix)) {
+            None => {}
+            Some(Ok(json)) => args.push(json.into()),
+            Some(Err(e)) => {
+                let p = &mut self.pyramid;
+                (p.key, p.texture, p.running, p.cancelled) = (Some(key), None, false, false);
+                p.error = Some(e);
+                return;
+            }
+        }
         if !host("synthesisePyramid", &args) {
             self.pyramid.error = Some("this page cannot run the synthesis".into());
             return;
         }
         let p = &mut self.pyramid;
-        p.key = Some((name, crop));
+        p.key = Some(key);
         p.texture = None;
         p.running = true;
         p.cancelled = false;
@@ -186,6 +248,7 @@ impl ProctexApp {
             self.widgets
                 .insert(name.into(), [r.min.x, r.min.y, r.width(), r.height()]);
         }
+        self.mix_controls(ui, syn_rect);
         self.pyramid_buttons(ui, syn_rect);
     }
 
@@ -202,7 +265,7 @@ impl ProctexApp {
                 egui::Color32::from_gray(230),
             );
         };
-        let (Some(texture), Some((_, crop))) = (&self.pyramid.texture, &self.pyramid.key) else {
+        let (Some(texture), Some((_, crop, _))) = (&self.pyramid.texture, &self.pyramid.key) else {
             let p = &self.pyramid;
             let status = if let Some(e) = &p.error {
                 format!("Heeger–Bergen synthesis failed: {e}")
@@ -241,6 +304,71 @@ impl ProctexApp {
         });
     }
 
+    /// "Mix with" (none, a sample, a preset) and the mixture's m, over the synthesis pane.
+    fn mix_controls(&mut self, ui: &mut egui::Ui, rect: egui::Rect) {
+        // Two rows above the button: the source, then m.
+        let at = egui::Rect::from_min_size(
+            rect.left_bottom() + egui::vec2(8.0, -100.0),
+            egui::vec2((rect.width() - 16.0).max(120.0), 62.0),
+        );
+        let label = |s: &Option<(String, f32)>| match s {
+            None => "none".to_string(),
+            Some((source, _)) => source
+                .split_once(':')
+                .map_or(source.as_str(), |(_, n)| n)
+                .trim_end_matches(".png")
+                .to_string(),
+        };
+        let mut choice = self.pyramid.mix.clone();
+        let mut slider = self.pyramid.slider;
+        let mut released = false;
+        let mut rects = Vec::new();
+        let presets: Vec<String> = self.presets.list.iter().map(|p| p.name.clone()).collect();
+        ui.scope_builder(egui::UiBuilder::new().max_rect(at), |ui| {
+            ui.vertical(|ui| {
+                // A first pick starts halfway.
+                let m = choice.as_ref().map_or(0.5, |c| c.1);
+                let r = egui::ComboBox::from_id_salt("pyramid.mix")
+                    .selected_text(format!("Mix with: {}", label(&choice)))
+                    .width((at.width() - 4.0).min(220.0))
+                    .show_ui(ui, |ui| {
+                        ui.selectable_value(&mut choice, None, "none");
+                        for name in SAMPLES {
+                            let v = Some((format!("sample:{name}"), m));
+                            ui.selectable_value(&mut choice, v, name.trim_end_matches(".png"));
+                        }
+                        for name in &presets {
+                            let v = Some((format!("preset:{name}"), m));
+                            ui.selectable_value(&mut choice, v, format!("preset {name}"));
+                        }
+                    });
+                rects.push(("pyramid.mix", r.response.clone()));
+                if let Some((_, m)) = &choice
+                    && self.pyramid.mix.is_none()
+                {
+                    slider = *m;
+                }
+                if choice.is_some() {
+                    let r = ui
+                        .add(egui::Slider::new(&mut slider, 0.0..=1.0).text("m"))
+                        .on_hover_text("0: the crop's synthesis; 1: the other texture's");
+                    released = r.drag_stopped() || (r.changed() && !r.dragged());
+                    rects.push(("pyramid.m", r));
+                }
+            });
+        });
+        for (name, r) in rects {
+            self.record(name, &r);
+        }
+        self.pyramid.slider = slider;
+        if released {
+            choice = choice.map(|(s, _)| (s, slider));
+        }
+        if choice != self.pyramid.mix {
+            self.pyramid.mix = choice;
+        }
+    }
+
     /// Cancel while it runs; Download PNG when it is there; Synthesise again after a stop.
     fn pyramid_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) {
         let at = egui::Rect::from_min_size(
@@ -272,11 +400,22 @@ impl ProctexApp {
 
     fn download_pyramid(&self) {
         let p = &self.pyramid;
-        let Some((name, _)) = &p.key else {
+        let Some((name, _, mix)) = &p.key else {
             return;
         };
         let stem = name.rsplit_once('.').map_or(name.as_str(), |(s, _)| s);
-        let file = format!("{stem}_heeger_bergen_{}x{}.png", p.size[0], p.size[1]);
+        let mixed = match mix {
+            Some((source, m)) => {
+                let other = source.split_once(':').map_or(source.as_str(), |(_, n)| n);
+                let other = other.rsplit_once('.').map_or(other, |(s, _)| s);
+                format!("_mix_{other}_{m:.2}")
+            }
+            None => String::new(),
+        };
+        let file = format!(
+            "{stem}{mixed}_heeger_bergen_{}x{}.png",
+            p.size[0], p.size[1]
+        );
         let rgba = js_sys::Uint8Array::from(&p.rgba[..]);
         host(
             "downloadPng",

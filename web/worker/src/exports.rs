@@ -189,6 +189,35 @@ impl PyramidSynthesis {
         Ok(PyramidSynthesis { job })
     }
 
+    /// Prepares the texture mixture `m` of the way from the synthesis of `crop` of the RGBA
+    /// image to that of a second RGBA image `b` (`b_width × b_height`); throws the error's
+    /// message.
+    #[allow(clippy::too_many_arguments)]
+    pub fn mixture(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Vec<u32>,
+        seed: u32,
+        b: &[u8],
+        b_width: u32,
+        b_height: u32,
+        m: f32,
+    ) -> Result<PyramidSynthesis, JsValue> {
+        let job = crate::pyramid_job::PyramidJob::mixture(
+            rgba,
+            width,
+            height,
+            parse_crop(&crop)?,
+            seed,
+            b,
+            (b_width, b_height),
+            m,
+        )
+        .map_err(js_error)?;
+        Ok(PyramidSynthesis { job })
+    }
+
     /// Rounds done.
     pub fn done(&self) -> usize {
         self.job.progress().0

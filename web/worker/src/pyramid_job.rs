@@ -38,6 +38,34 @@ impl PyramidJob {
         })
     }
 
+    /// Starts the texture mixture `m` of the way from the synthesis of `crop` of the RGBA image
+    /// to the synthesis of a second RGBA image `b` (`b_width × b_height`), at the crop's
+    /// reduced size; `b` is reduced to the analysis size as the crop is.
+    #[allow(clippy::too_many_arguments)]
+    pub fn mixture(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Option<[u32; 4]>,
+        seed: u32,
+        b: &[u8],
+        (b_width, b_height): (u32, u32),
+        m: f32,
+    ) -> proctex::error::Result<PyramidJob> {
+        let size = Options::default().size;
+        let photo = region(rgba, width, height, crop)?.reduce_to(size);
+        let other = region(b, b_width, b_height, None)?.reduce_to(size);
+        let opts = RasterOptions {
+            seed,
+            ..RasterOptions::new(photo.width, photo.height)
+        };
+        let limit = (MAX_SYNTHESIS_PIXELS, PAST_THE_LIMIT_IN_THE_PAGE);
+        Ok(PyramidJob {
+            synthesis: Synthesis::mixture(&photo, &other, m, &opts, limit)?,
+            size: (photo.width, photo.height),
+        })
+    }
+
     /// Rounds done and in all.
     pub fn progress(&self) -> (usize, usize) {
         (self.synthesis.done(), self.synthesis.steps())
@@ -104,5 +132,30 @@ mod tests {
         assert!(e.to_string().contains("reaches outside"), "{e}");
         let e = PyramidJob::new(&rgba, 1200, 300, Some([0, 0, 20, 20]), 1).unwrap_err();
         assert!(e.to_string().contains("at least 32"), "{e}");
+    }
+
+    fn finished(mut job: PyramidJob) -> Vec<u8> {
+        while job.step() {}
+        job.rgba()
+    }
+
+    /// A mixture at 0 is the crop's own synthesis, at 1 the other image's (at the crop's size).
+    #[test]
+    fn a_mixture_runs_between_the_two_syntheses() {
+        let (a, b) = (
+            checker(96, 96),
+            checker(64, 80).iter().map(|v| 255 - v).collect::<Vec<u8>>(),
+        );
+        let crop = Some([0, 0, 64, 64]);
+        let mix = |m| finished(PyramidJob::mixture(&a, 96, 96, crop, 1, &b, (64, 80), m).unwrap());
+        assert_eq!(
+            mix(0.0),
+            finished(PyramidJob::new(&a, 96, 96, crop, 1).unwrap())
+        );
+        let halfway = mix(0.5);
+        assert_ne!(halfway, mix(0.0));
+        assert_ne!(halfway, mix(1.0));
+        let e = PyramidJob::mixture(&a, 96, 96, crop, 1, &b, (64, 79), 0.5).unwrap_err();
+        assert!(e.to_string().contains("bytes of RGBA"), "{e}");
     }
 }
