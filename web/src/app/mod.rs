@@ -102,8 +102,15 @@ impl ViewMode {
             ViewMode::Split => "Split vs photo",
             ViewMode::Sphere => "Sphere",
             ViewMode::Cube => "Cube",
-            ViewMode::Pyramid => "Pyramid (Heeger–Bergen)",
+            ViewMode::Pyramid => "Pyramid",
         }
+    }
+
+    fn hover(self) -> Option<&'static str> {
+        (self == ViewMode::Pyramid).then_some(
+            "Heeger–Bergen pyramid synthesis: a raster texture made from the crop, beside the \
+             photo and the procedural texture",
+        )
     }
 }
 

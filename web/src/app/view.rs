@@ -64,9 +64,15 @@ impl egui_wgpu::CallbackTrait for TextureCallback {
 impl ProctexApp {
     /// The view toolbar (above the central panel).
     pub(super) fn toolbar(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
+        // Wrapped: on a narrow window the toolbar takes a second row rather than hiding its
+        // last buttons under the parameters panel.
+        ui.horizontal_wrapped(|ui| {
             for m in ViewMode::ALL {
                 let r = ui.selectable_label(self.mode == m, m.label());
+                let r = match m.hover() {
+                    Some(text) => r.on_hover_text(text),
+                    None => r,
+                };
                 self.record(format!("mode.{}", m.name()), &r);
                 if r.clicked() {
                     self.mode = m;
