@@ -262,6 +262,18 @@ function suggestStep(s) {
   }, [thumbs.buffer]);
 }
 
+// Benchmarks: the median milliseconds of `reps` calls of `f`.
+function medianMs(reps, f) {
+  const t = [];
+  for (let i = 0; i < reps; i++) {
+    const s = performance.now();
+    f();
+    t.push(performance.now() - s);
+  }
+  t.sort((a, b) => a - b);
+  return t[t.length >> 1];
+}
+
 async function handle(m) {
   await ready;
   const t0 = performance.now();
@@ -385,14 +397,8 @@ async function handle(m) {
       // 64³ solid texture (once: seconds).
       const ms = {};
       for (const stage of ['ffts', 'synthesis', 'solid']) {
-        const t = [];
-        for (let i = 0; i < (stage === 'solid' ? 1 : m.reps); i++) {
-          const s = performance.now();
-          wasm.benchPyramid(m.rgba, m.width, m.height, stage);
-          t.push(performance.now() - s);
-        }
-        t.sort((a, b) => a - b);
-        ms[stage] = t[t.length >> 1];
+        ms[stage] = medianMs(stage === 'solid' ? 1 : m.reps,
+          () => wasm.benchPyramid(m.rgba, m.width, m.height, stage));
       }
       postMessage({ type: 'bench', id: m.id, ms });
       return;
@@ -402,14 +408,7 @@ async function handle(m) {
       await dbReady;
       const ms = {};
       for (const stage of ['ffts', 'descriptor', 'retrieval']) {
-        const t = [];
-        for (let i = 0; i < m.reps; i++) {
-          const s = performance.now();
-          wasm.benchRetrieval(m.rgba, m.width, m.height, stage);
-          t.push(performance.now() - s);
-        }
-        t.sort((a, b) => a - b);
-        ms[stage] = t[t.length >> 1];
+        ms[stage] = medianMs(m.reps, () => wasm.benchRetrieval(m.rgba, m.width, m.height, stage));
       }
       postMessage({ type: 'bench', id: m.id, ms });
       return;

@@ -30,6 +30,8 @@ pub(super) struct PyramidState {
     slider: f32,
     texture: Option<egui::TextureHandle>,
     rgba: Vec<u8>,
+    /// FNV-1a of `rgba`, computed once when it arrives (the snapshot is published every frame).
+    checksum: u32,
     size: [u32; 2],
     /// Rounds done and in all while it runs.
     progress: Option<(u32, u32)>,
@@ -85,7 +87,7 @@ impl PyramidState {
                 .as_ref()
                 .and(self.key.as_ref())
                 .and_then(|k| k.2.clone()),
-            checksum: self.texture.as_ref().map(|_| fnv1a(&self.rgba)),
+            checksum: self.texture.as_ref().map(|_| self.checksum),
         }
     }
 }
@@ -125,6 +127,7 @@ impl ProctexApp {
         };
         let p = &mut self.pyramid;
         p.texture = Some(ctx.load_texture("pyramid", image, options));
+        p.checksum = fnv1a(&rgba);
         p.rgba = rgba;
         p.size = size;
         p.ms = Some(ms);
@@ -323,7 +326,7 @@ impl ProctexApp {
         let mut slider = self.pyramid.slider;
         let mut released = false;
         let mut rects = Vec::new();
-        let presets: Vec<String> = self.presets.list.iter().map(|p| p.name.clone()).collect();
+        let presets = &self.presets.list;
         ui.scope_builder(egui::UiBuilder::new().max_rect(at), |ui| {
             ui.vertical(|ui| {
                 // A first pick starts halfway.
@@ -337,7 +340,7 @@ impl ProctexApp {
                             let v = Some((format!("sample:{name}"), m));
                             ui.selectable_value(&mut choice, v, name.trim_end_matches(".png"));
                         }
-                        for name in &presets {
+                        for name in presets.iter().map(|p| &p.name) {
                             let v = Some((format!("preset:{name}"), m));
                             ui.selectable_value(&mut choice, v, format!("preset {name}"));
                         }
