@@ -54,9 +54,11 @@ worker.onmessage = (e) => {
     }
     return;
   }
-  // The Heeger–Bergen synthesis' rounds (its result resolves the job below).
+  // The Heeger–Bergen syntheses' rounds (their results resolve the jobs below).
   if (m.type === 'pyramidProgress') {
-    if (m.id === pyramidJob && appRunning) wasm.pyramidProgress(m.done, m.total);
+    if (!appRunning) return;
+    if (m.id === pyramidJob) wasm.pyramidProgress(m.done, m.total);
+    else if (m.id === solidJob) wasm.solidProgress(m.done, m.total);
     return;
   }
   const resolve = pending.get(m.id);
@@ -74,12 +76,13 @@ function job(msg, transfer = []) {
 
 let appRunning = false;
 let pyramidJob = 0; // the Heeger–Bergen synthesis the app waits for (0: none)
+let solidJob = 0; // the Heeger–Bergen solid texture the app waits for (0: none)
 
 // The Heeger–Bergen synthesis of crop [x, y, w, h] of the current photo, for the app's
 // pyramid view; a new one supersedes the one running (which is cancelled).
 // `mix`: absent, or JSON { sample: name | params: json, m } for a texture mixture.
 async function synthesisePyramid(x, y, w, h, seed, mix) {
-  if (pyramidJob) worker.postMessage({ type: 'cancelPyramid' });
+  if (pyramidJob) worker.postMessage({ type: 'cancelPyramid', id: pyramidJob });
   const [id, reply] = job({
     type: 'pyramid', crop: [x, y, w, h], seed, mix: mix ? JSON.parse(mix) : undefined,
   });
@@ -90,6 +93,20 @@ async function synthesisePyramid(x, y, w, h, seed, mix) {
   if (m.type === 'error') wasm.pyramidFailed(m.message);
   else if (m.cancelled) wasm.pyramidCancelled();
   else wasm.pyramidDone(m.rgba, m.width, m.height, m.ms);
+}
+
+// The Heeger–Bergen solid texture (n³ voxels) of crop [x, y, w, h] of the current photo, for
+// the sphere and cube views; a new one supersedes the one running (which is cancelled).
+async function synthesiseSolid(x, y, w, h, seed, n) {
+  if (solidJob) worker.postMessage({ type: 'cancelPyramid', id: solidJob });
+  const [id, reply] = job({ type: 'solid', crop: [x, y, w, h], seed, n });
+  solidJob = id;
+  const m = await reply;
+  if (m.id !== solidJob) return;
+  solidJob = 0;
+  if (m.type === 'error') wasm.solidFailed(m.message);
+  else if (m.cancelled) wasm.solidCancelled();
+  else wasm.solidDone(m.rgba, m.n, m.voxelsPerUnit, m.ms);
 }
 
 // An RGBA8 image as a PNG download (the canvas encodes it losslessly: every alpha is 255).
@@ -455,7 +472,9 @@ window.proctexHost = {
   },
   cancelSuggestions: () => worker.postMessage({ type: 'cancelSuggest' }),
   synthesisePyramid: (x, y, w, h, seed, mix) => { synthesisePyramid(x, y, w, h, seed, mix); },
-  cancelPyramid: () => worker.postMessage({ type: 'cancelPyramid' }),
+  cancelPyramid: () => worker.postMessage({ type: 'cancelPyramid', id: pyramidJob }),
+  synthesiseSolid: (x, y, w, h, seed, n) => { synthesiseSolid(x, y, w, h, seed, n); },
+  cancelSolid: () => worker.postMessage({ type: 'cancelPyramid', id: solidJob }),
   downloadPng: (name, rgba, width, height) => {
     downloadPng(name, rgba, width, height).catch((e) => wasm.reportError(`PNG: ${e}`));
   },

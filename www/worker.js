@@ -353,8 +353,7 @@ async function handle(m) {
       return;
     }
     case 'pyramid': {
-      // The Heeger–Bergen synthesis of the current photo's crop, one round per macrotask, so
-      // that Cancel ('cancelPyramid', not queued) gets in between rounds.
+      // The Heeger–Bergen synthesis of the current photo's crop.
       if (!photo) throw new Error('no photo to synthesise from');
       const crop = new Uint32Array(m.crop);
       let job;
@@ -366,30 +365,22 @@ async function handle(m) {
       } else {
         job = new wasm.PyramidSynthesis(photo.rgba, photo.width, photo.height, crop, m.seed);
       }
-      pyramid = { id: m.id, cancelled: false };
-      const mine = pyramid;
-      try {
-        postMessage({ type: 'pyramidProgress', id: m.id, done: 0, total: job.steps() });
-        let more = job.steps() > 0;
-        while (more) {
-          await new Promise((r) => setTimeout(r, 0));
-          if (mine.cancelled) {
-            postMessage({ type: 'pyramid', id: m.id, cancelled: true });
-            return;
-          }
-          more = job.step();
-          postMessage({ type: 'pyramidProgress', id: m.id, done: job.done(), total: job.steps() });
-        }
+      await runRounds(m.id, job, t0, () => {
         const [width, height] = job.size();
         const rgba = job.rgba();
-        postMessage({
-          type: 'pyramid', id: m.id, cancelled: false, rgba, width, height,
-          ms: performance.now() - t0,
-        }, [rgba.buffer]);
-      } finally {
-        job.free();
-        if (pyramid === mine) pyramid = null;
-      }
+        return [{ rgba, width, height }, [rgba.buffer]];
+      });
+      return;
+    }
+    case 'solid': {
+      // The Heeger–Bergen solid texture (an n³ volume) of the current photo's crop.
+      if (!photo) throw new Error('no photo to synthesise from');
+      const job = new wasm.SolidSynthesis(photo.rgba, photo.width, photo.height,
+        new Uint32Array(m.crop), m.seed, m.n);
+      await runRounds(m.id, job, t0, () => {
+        const rgba = job.rgba();
+        return [{ rgba, n: job.side(), voxelsPerUnit: job.voxelsPerUnit() }, [rgba.buffer]];
+      });
       return;
     }
     case 'benchPyramid': {
@@ -435,8 +426,38 @@ async function mixtureSource(mix) {
   return { rgba, width: MIX_PRESET_SIDE, height: MIX_PRESET_SIDE };
 }
 
-// The running pyramid synthesis ({ id, cancelled }), for 'cancelPyramid'.
+// Runs a synthesis job (PyramidSynthesis or SolidSynthesis) one round per macrotask, so that
+// Cancel ('cancelPyramid', not queued) gets in between rounds; posts 'pyramidProgress' after
+// each and then { type: 'pyramid', cancelled, ...result() } (`result` gives the message's
+// fields and its transfer list). Frees the job.
+async function runRounds(id, job, t0, result) {
+  const mine = { id, cancelled: cancelledSyntheses.delete(id) };
+  pyramid = mine;
+  try {
+    postMessage({ type: 'pyramidProgress', id, done: 0, total: job.steps() });
+    let more = job.steps() > 0;
+    while (more) {
+      await new Promise((r) => setTimeout(r, 0));
+      if (mine.cancelled) {
+        postMessage({ type: 'pyramid', id, cancelled: true });
+        return;
+      }
+      more = job.step();
+      postMessage({ type: 'pyramidProgress', id, done: job.done(), total: job.steps() });
+    }
+    const [fields, transfer] = result();
+    postMessage({ type: 'pyramid', id, cancelled: false, ...fields, ms: performance.now() - t0 },
+      transfer);
+  } finally {
+    job.free();
+    if (pyramid === mine) pyramid = null;
+  }
+}
+
+// The running synthesis ({ id, cancelled }), for 'cancelPyramid'; the ids of queued ones
+// cancelled before they started.
 let pyramid = null;
+const cancelledSyntheses = new Set();
 
 // Jobs run one at a time, in order.
 let queue = Promise.resolve();
@@ -458,8 +479,10 @@ onmessage = (e) => {
     return;
   }
   if (m.type === 'cancelPyramid') {
-    // Not queued: the running synthesis sees it before its next round.
-    if (pyramid) pyramid.cancelled = true;
+    // Not queued: the running synthesis `m.id` sees it before its next round; a queued one
+    // when it starts.
+    if (pyramid?.id === m.id) pyramid.cancelled = true;
+    else cancelledSyntheses.add(m.id);
     return;
   }
   if (m.type === 'cancelSuggest') {

@@ -26,8 +26,12 @@ pub const HASH: &str = include_str!("../hash.wgsl");
 pub const PATTERN: &str = include_str!("../pattern.wgsl");
 /// The 2D plane view (full-screen triangle) and the trivial baseline shader `fs_flat`.
 pub const PLANE: &str = include_str!("../plane.wgsl");
-/// The solid view: sphere or cube of the 3D texture, orbit camera.
+/// The solid views' orbit camera and its ray through a pixel into the sphere or cube.
+pub const SOLID_CAMERA: &str = include_str!("../solid_camera.wgsl");
+/// The solid view of the procedural texture: the sphere or cube shaded by the 3D texture.
 pub const SOLID: &str = include_str!("../solid.wgsl");
+/// The solid view of a raster volume (the Heeger–Bergen solid texture), trilinear, wrapping.
+pub const SOLID_VOLUME: &str = include_str!("../solid_volume.wgsl");
 /// The app's frame cache of the texture view copied to the canvas, pixel for pixel.
 pub const VIEW_COPY: &str = include_str!("../view_copy.wgsl");
 
@@ -116,7 +120,13 @@ pub fn plane_atlas_shader() -> String {
 
 /// The solid view shader (entry points `vs_solid`, `fs_solid`).
 pub fn solid_shader() -> String {
-    [texture_library().as_str(), SOLID].join("\n")
+    [texture_library().as_str(), SOLID_CAMERA, SOLID].join("\n")
+}
+
+/// The solid view of a raster volume (entry points `vs_solid`, `fs_solid_volume`): the camera
+/// alone, no texture library.
+pub fn solid_volume_shader() -> String {
+    [SOLID_CAMERA, SOLID_VOLUME].join("\n")
 }
 
 /// The GLSL ES 3.00 twins of the texture library and the bake passes, for exported GLSL
@@ -190,7 +200,7 @@ fn odd_offset(n: u32) -> u32 {
 }
 
 /// Every WGSL file: (name, source).
-pub const FILES: [(&str, &str); 17] = [
+pub const FILES: [(&str, &str); 19] = [
     ("hash.wgsl", HASH),
     ("pattern.wgsl", PATTERN),
     ("params.wgsl", PARAMS),
@@ -204,7 +214,9 @@ pub const FILES: [(&str, &str); 17] = [
     ("histogram.wgsl", HISTOGRAM),
     ("texture.wgsl", TEXTURE),
     ("plane.wgsl", PLANE),
+    ("solid_camera.wgsl", SOLID_CAMERA),
     ("solid.wgsl", SOLID),
+    ("solid_volume.wgsl", SOLID_VOLUME),
     ("bake.wgsl", BAKE),
     ("seamless.wgsl", SEAMLESS),
     ("view_copy.wgsl", VIEW_COPY),
@@ -215,6 +227,7 @@ pub fn shaders() -> Vec<(&'static str, String)> {
     vec![
         ("plane", plane_shader()),
         ("solid", solid_shader()),
+        ("solid_volume", solid_volume_shader()),
         ("view_copy", VIEW_COPY.to_string()),
         ("seamless", seamless_shader()),
         (

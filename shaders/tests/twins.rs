@@ -2,7 +2,7 @@
 
 /// WGSL file → the analyzer source holding the twins of its functions. A function's twin has
 /// the same name, except for the ones listed in `RENAMED`.
-const TWIN_FILES: [(&str, &[&str]); 16] = [
+const TWIN_FILES: [(&str, &[&str]); 18] = [
     ("hash.wgsl", &["analyzer/src/rng.rs"]),
     ("pattern.wgsl", &["analyzer/src/render/pattern.rs"]),
     (
@@ -22,7 +22,9 @@ const TWIN_FILES: [(&str, &[&str]); 16] = [
     ("histogram.wgsl", &["analyzer/src/histogram.rs"]),
     ("texture.wgsl", &["analyzer/src/render.rs"]),
     ("plane.wgsl", &["analyzer/src/render.rs"]),
+    ("solid_camera.wgsl", &["analyzer/src/solid.rs"]),
     ("solid.wgsl", &["analyzer/src/solid.rs"]),
+    ("solid_volume.wgsl", &["analyzer/src/solid.rs"]),
     ("seamless.wgsl", &["analyzer/src/seamless.rs"]),
     ("view_copy.wgsl", &["web/src/view_cache.rs"]),
     (
@@ -33,7 +35,7 @@ const TWIN_FILES: [(&str, &[&str]); 16] = [
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 25] = [
+const RENAMED: [(&str, &str); 26] = [
     // `uniform` would shadow the address space of `var<uniform>` (exported morphs have one).
     ("uniform01", "uniform"),
     ("morph_params", "morph_path"),
@@ -44,6 +46,7 @@ const RENAMED: [(&str, &str); 25] = [
     ("vs_seamless", "render_rows"),
     ("fs_seamless", "render_rows"),
     ("fs_solid", "render_solid"),
+    ("fs_solid_volume", "render_solid_volume"),
     // The bake passes together are Tile::generate; r_value is its `r` vector, band its `band`,
     // wrap its `rem_euclid` indexing.
     ("vs_bake", "generate"),

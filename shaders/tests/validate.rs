@@ -171,3 +171,19 @@ fn solid_view_uniform_matches_rust() {
     let want = proctex::solid::BACKGROUND;
     assert!(background.contains(&format!("{:?}, {:?}, {:?}", want[0], want[1], want[2])));
 }
+
+#[test]
+fn solid_volume_uniform_matches_rust() {
+    let module = parse("solid_volume", &proctex_shaders::solid_volume_shader());
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).unwrap();
+    let (handle, _) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("SolidVolume"))
+        .expect("struct SolidVolume");
+    assert_eq!(
+        layouter[handle].size as usize,
+        proctex::solid::VOLUME_UNIFORM_SIZE
+    );
+}

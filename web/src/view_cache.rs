@@ -22,6 +22,7 @@ use proctex::solid::SolidView;
 use crate::renderer::{
     Pass, TextureRenderer, clear_pass, full_screen_pipeline, tile_entry, uniform_entry,
 };
+use crate::volume_renderer::{VolumeRenderer, VolumeSource};
 
 /// Size of the copy's uniform (`struct ViewCopy` in `shaders/view_copy.wgsl`).
 const COPY_UNIFORM_SIZE: usize = 16;
@@ -55,8 +56,10 @@ pub fn copy_view(
 pub enum ViewSource {
     /// World window of the plane view.
     Plane(View),
-    /// Camera of the sphere or cube.
+    /// Camera of the sphere or cube of the procedural texture.
     Solid(SolidView),
+    /// Camera of the sphere or cube of a raster volume (the pass and params are not used).
+    Volume(SolidView, VolumeSource),
 }
 
 /// Everything the cached pixels depend on.
@@ -80,6 +83,7 @@ struct Target {
 #[derive(Debug)]
 pub struct CachedView {
     renderer: TextureRenderer,
+    volume: VolumeRenderer,
     format: wgpu::TextureFormat,
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
@@ -93,6 +97,7 @@ impl CachedView {
     /// The renderer and the copy pipeline for a canvas of `format`.
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
         let renderer = TextureRenderer::new(device, format);
+        let volume = VolumeRenderer::new(device, format);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("proctex view copy"),
             source: wgpu::ShaderSource::Wgsl(proctex_shaders::VIEW_COPY.into()),
@@ -125,6 +130,7 @@ impl CachedView {
         });
         CachedView {
             renderer,
+            volume,
             format,
             pipeline,
             layout,
@@ -183,18 +189,30 @@ impl CachedView {
         let Some(target) = &self.target else {
             return;
         };
-        self.renderer.set_params(device, queue, params);
         // The view rendered at frame offset 0: the cache is the view's own image.
+        let at_origin = |sv: &SolidView| SolidView {
+            frame_offset: [0.0, 0.0],
+            ..*sv
+        };
         match view {
-            ViewSource::Plane(v) => self.renderer.set_view(queue, v, [0.0, 0.0]),
+            ViewSource::Plane(v) => {
+                self.renderer.set_params(device, queue, params);
+                self.renderer.set_view(queue, v, [0.0, 0.0]);
+            }
             ViewSource::Solid(sv) => {
-                let mut at_origin = *sv;
-                at_origin.frame_offset = [0.0, 0.0];
-                self.renderer.set_solid_view(queue, &at_origin);
+                self.renderer.set_params(device, queue, params);
+                self.renderer.set_solid_view(queue, &at_origin(sv));
+            }
+            ViewSource::Volume(sv, src) => {
+                self.volume.set_volume(device, queue, src);
+                self.volume.set_view(queue, &at_origin(sv));
             }
         }
         let mut rp = clear_pass(encoder, &target.view, "proctex view cache");
-        self.renderer.draw_pass(&mut rp, pass);
+        match view {
+            ViewSource::Volume(..) => self.volume.draw(&mut rp),
+            _ => self.renderer.draw_pass(&mut rp, pass),
+        }
         drop(rp);
         self.key = Some(CacheKey {
             params: params.clone(),

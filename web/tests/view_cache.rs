@@ -8,6 +8,7 @@ use proctex::render::View;
 use proctex::solid::{Orbit, Shape, SolidView};
 use proctex_web::renderer::{Pass, TextureRenderer, clear_pass};
 use proctex_web::view_cache::{CachedView, ViewSource};
+use proctex_web::volume_renderer::{VolumeRenderer, VolumeSource};
 
 mod common;
 use common::{Gpu, gpu, read_rgb8, rgba8_target};
@@ -43,12 +44,18 @@ fn clip_to_view(pass: &mut wgpu::RenderPass<'_>) {
 /// The view rendered straight into the canvas rectangle (the app's draw before the cache).
 fn direct(gpu: &Gpu, params: &Params, pass_kind: Pass, view: &ViewSource) -> Vec<u8> {
     let target = rgba8_target(gpu, CANVAS[0], CANVAS[1]);
-    let mut renderer = TextureRenderer::new(&gpu.device, wgpu::TextureFormat::Rgba8Unorm);
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let mut renderer = TextureRenderer::new(&gpu.device, format);
+    let mut volume = VolumeRenderer::new(&gpu.device, format);
     renderer.set_params(&gpu.device, &gpu.queue, params);
     let offset = OFFSET.map(|v| v as f32);
     match view {
         ViewSource::Plane(v) => renderer.set_view(&gpu.queue, v, offset),
         ViewSource::Solid(sv) => renderer.set_solid_view(&gpu.queue, sv),
+        ViewSource::Volume(sv, src) => {
+            volume.set_volume(&gpu.device, &gpu.queue, src);
+            volume.set_view(&gpu.queue, sv);
+        }
     }
     let mut encoder = gpu
         .device
@@ -57,7 +64,10 @@ fn direct(gpu: &Gpu, params: &Params, pass_kind: Pass, view: &ViewSource) -> Vec
         let canvas = target.create_view(&wgpu::TextureViewDescriptor::default());
         let mut pass = clear_pass(&mut encoder, &canvas, "canvas");
         clip_to_view(&mut pass);
-        renderer.draw_pass(&mut pass, pass_kind);
+        match view {
+            ViewSource::Volume(..) => volume.draw(&mut pass),
+            _ => renderer.draw_pass(&mut pass, pass_kind),
+        }
     }
     gpu.queue.submit([encoder.finish()]);
     read_rgb8(gpu, &target, CANVAS[0], CANVAS[1])
@@ -172,4 +182,49 @@ fn the_cached_solid_view_equals_the_direct_render() {
     let got = through_cache(&gpu, &mut cache, &params, Pass::Solid, &view, false);
     assert_eq!(got, want, "solid view: the copy is the direct render");
     assert_eq!(cache.renders(), 1);
+}
+
+/// A small raster volume of smooth colours (the view's subject, not a synthesis).
+fn waves(id: u64, n: u32) -> VolumeSource {
+    let voxels: Vec<[f32; 3]> = (0..n.pow(3))
+        .map(|i| {
+            let (x, y, z) = (i % n, i / n % n, i / (n * n));
+            let a = std::f32::consts::TAU / n as f32;
+            [
+                0.5 + 0.4 * (a * x as f32).sin(),
+                0.5 + 0.4 * (a * (y + z) as f32).cos(),
+                (z as f32 + id as f32) / (n as f32 + 2.0),
+            ]
+        })
+        .collect();
+    VolumeSource {
+        id,
+        voxels_per_unit: 1.0 / 32.0,
+        voxels: std::sync::Arc::new(proctex::solid::Voxels::from_rgb(n, &voxels)),
+    }
+}
+
+#[test]
+fn the_cached_volume_view_equals_the_direct_render_and_follows_the_volume() {
+    let gpu = gpu();
+    let params = rock();
+    let sv = SolidView::new(
+        &Orbit::default(),
+        SIZE.map(|v| v as f32),
+        OFFSET.map(|v| v as f32),
+    );
+    let view = ViewSource::Volume(sv, waves(1, 16));
+    let want = direct(&gpu, &params, Pass::Solid, &view);
+    assert!(variance_in_view(&want) > 4.0, "a lit, coloured sphere");
+    let mut cache = CachedView::new(&gpu.device, wgpu::TextureFormat::Rgba8Unorm);
+    let got = through_cache(&gpu, &mut cache, &params, Pass::Solid, &view, false);
+    assert_eq!(got, want, "volume view: the copy is the direct render");
+    through_cache(&gpu, &mut cache, &params, Pass::Solid, &view, false);
+    assert_eq!(cache.renders(), 1);
+    // A new volume (another id) renders again, and shows the new voxels.
+    let other = ViewSource::Volume(sv, waves(2, 16));
+    let next = through_cache(&gpu, &mut cache, &params, Pass::Solid, &other, false);
+    assert_eq!(cache.renders(), 2);
+    assert_ne!(next, want);
+    assert_eq!(next, direct(&gpu, &params, Pass::Solid, &other));
 }

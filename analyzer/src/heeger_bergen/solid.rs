@@ -18,7 +18,9 @@ use std::cell::RefCell;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex32;
 
-use super::{ChannelTargets, decorrelated, match_histogram, prepare, sorted, stream};
+use super::{
+    ChannelTargets, PreparedSample, decorrelated, match_histogram, prepare, sorted, stream,
+};
 use crate::error::{Error, Result};
 use crate::input::Photo;
 use crate::pyramid::{Plan, max_scales};
@@ -265,7 +267,7 @@ impl Default for SolidOptions {
 /// The targets of one decorrelated channel for the volume: the 2D Laplacian pyramid's subbands
 /// (for the 3D pyramid) and the steerable ones with the channel's values (for the slices).
 struct SolidTargets<'a> {
-    isotropic: Vec<Vec<f32>>,
+    isotropic: &'a [Vec<f32>],
     steerable: &'a ChannelTargets,
 }
 
@@ -276,7 +278,7 @@ type VoxelOfSlice = fn(usize, usize, usize, usize) -> usize;
 /// then the volume's histogram matched.
 fn solid_round(t: &SolidTargets, plan3: &Plan3, slice_plan: &Plan, n: usize, v: &mut Vec<f32>) {
     let mut bands = plan3.analyse(v);
-    for (b, target) in bands.iter_mut().zip(&t.isotropic) {
+    for (b, target) in bands.iter_mut().zip(t.isotropic) {
         match_histogram(b, target);
     }
     let mut sum = plan3.synthesise(&bands);
@@ -319,56 +321,128 @@ pub fn synthesize_solid(
     opts: &SolidOptions,
     progress: &(dyn Fn(usize, usize) -> bool + Sync),
 ) -> Result<Option<Volume>> {
-    photo.check_min_size()?;
-    if !(MIN_SIDE..=MAX_SIDE).contains(&opts.n) {
-        return Err(Error::Option(format!(
-            "--solid {} is not between {MIN_SIDE} and {MAX_SIDE}",
-            opts.n
-        )));
-    }
-    super::check_loop(opts.iterations, opts.scales, opts.orientations)?;
-    let n = opts.n as usize;
-    let scales = super::scales_for(
-        (photo.width as usize, photo.height as usize),
-        (n, n),
-        opts.scales,
-    );
-    let k = opts.orientations as usize;
-    let sample = prepare(photo, scales, k);
-    // The isotropic targets: the photo's decorrelated channels through a one-orientation plan.
-    let isotropic_plan = Plan::new(photo.width as usize, photo.height as usize, scales, 1);
-    let (_, channels) = decorrelated(photo);
-    let targets: Vec<SolidTargets> = (0..3)
-        .map(|j| SolidTargets {
-            isotropic: isotropic_plan
-                .analyse(&channels[j])
-                .subbands()
-                .map(|b| sorted(b))
-                .collect(),
-            steerable: &sample.channels[j],
-        })
-        .collect();
-    let (plan3, slice_plan) = (Plan3::new(n, scales), Plan::new(n, n, scales, k));
-    let total = 3 * opts.iterations as usize;
-    let mut out = Vec::with_capacity(3);
-    for (j, t) in targets.iter().enumerate() {
-        let mut v: Vec<f32> = (0..n * n * n)
-            .map(|i| rng::gaussian(opts.seed, stream(j), i as u32) as f32)
-            .collect();
-        match_histogram(&mut v, &t.steerable.pixels);
-        for r in 0..opts.iterations as usize {
-            solid_round(t, &plan3, &slice_plan, n, &mut v);
-            if !progress(j * opts.iterations as usize + r + 1, total) {
-                return Ok(None);
-            }
+    let mut synthesis = SolidSynthesis::new(photo, opts)?;
+    while synthesis.done() < synthesis.steps() {
+        synthesis.step();
+        if !progress(synthesis.done(), synthesis.steps()) {
+            return Ok(None);
         }
-        out.push(v);
     }
-    let slab = super::to_photo(&sample, &out, (n, n * n));
-    Ok(Some(Volume {
-        n: opts.n,
-        voxels: slab.pixels,
-    }))
+    Ok(Some(synthesis.volume()))
+}
+
+/// A solid texture in progress, one round of one channel at a time (the worker reports
+/// progress and sees Cancel between rounds); the same bits as [`synthesize_solid`].
+#[derive(Clone, Debug)]
+pub struct SolidSynthesis {
+    sample: PreparedSample,
+    /// Per decorrelated channel, the photo's isotropic subbands, sorted.
+    isotropic: Vec<Vec<Vec<f32>>>,
+    plan3: Plan3,
+    slice_plan: Plan,
+    n: usize,
+    iterations: usize,
+    channels: Vec<Vec<f32>>,
+    done: usize,
+}
+
+impl SolidSynthesis {
+    /// Prepares `photo` and starts the loop from noise with the photo's histogram; errors on a
+    /// photo or options out of range.
+    pub fn new(photo: &Photo, opts: &SolidOptions) -> Result<SolidSynthesis> {
+        photo.check_min_size()?;
+        if !(MIN_SIDE..=MAX_SIDE).contains(&opts.n) {
+            return Err(Error::Option(format!(
+                "--solid {} is not between {MIN_SIDE} and {MAX_SIDE}",
+                opts.n
+            )));
+        }
+        super::check_loop(opts.iterations, opts.scales, opts.orientations)?;
+        let n = opts.n as usize;
+        let scales = super::scales_for(
+            (photo.width as usize, photo.height as usize),
+            (n, n),
+            opts.scales,
+        );
+        let sample = prepare(photo, scales, opts.orientations as usize);
+        // The isotropic targets: the photo's decorrelated channels through a one-orientation
+        // plan.
+        let isotropic_plan = Plan::new(photo.width as usize, photo.height as usize, scales, 1);
+        let (_, decorrelated) = decorrelated(photo);
+        let isotropic = decorrelated
+            .iter()
+            .map(|c| {
+                isotropic_plan
+                    .analyse(c)
+                    .subbands()
+                    .map(|b| sorted(b))
+                    .collect()
+            })
+            .collect();
+        let channels = (0..3)
+            .map(|j| {
+                let mut v: Vec<f32> = (0..n * n * n)
+                    .map(|i| rng::gaussian(opts.seed, stream(j), i as u32) as f32)
+                    .collect();
+                match_histogram(&mut v, &sample.channels[j].pixels);
+                v
+            })
+            .collect();
+        Ok(SolidSynthesis {
+            sample,
+            isotropic,
+            plan3: Plan3::new(n, scales),
+            slice_plan: Plan::new(n, n, scales, opts.orientations as usize),
+            n,
+            iterations: opts.iterations as usize,
+            channels,
+            done: 0,
+        })
+    }
+
+    /// Rounds in all (three channels × the iterations).
+    pub fn steps(&self) -> usize {
+        3 * self.iterations
+    }
+
+    /// Rounds done.
+    pub fn done(&self) -> usize {
+        self.done
+    }
+
+    /// The volume's side.
+    pub fn side(&self) -> u32 {
+        self.n as u32
+    }
+
+    /// Runs the next round (channel by channel); returns whether any remain.
+    pub fn step(&mut self) -> bool {
+        if self.done < self.steps() {
+            let j = self.done / self.iterations;
+            let targets = SolidTargets {
+                isotropic: &self.isotropic[j],
+                steerable: &self.sample.channels[j],
+            };
+            solid_round(
+                &targets,
+                &self.plan3,
+                &self.slice_plan,
+                self.n,
+                &mut self.channels[j],
+            );
+            self.done += 1;
+        }
+        self.done < self.steps()
+    }
+
+    /// The volume as it stands (the result once every round is done).
+    pub fn volume(&self) -> Volume {
+        let n = self.n;
+        Volume {
+            n: self.n as u32,
+            voxels: super::to_photo(&self.sample, &self.channels, (n, n * n)).pixels,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -245,6 +245,65 @@ impl PyramidSynthesis {
     }
 }
 
+/// Worker job: the Heeger–Bergen solid texture of a photo (or crop) in rounds (see
+/// `pyramid_job::SolidJob`), for the sphere and cube views.
+#[wasm_bindgen]
+#[derive(Debug)]
+pub struct SolidSynthesis {
+    job: crate::pyramid_job::SolidJob,
+}
+
+#[wasm_bindgen]
+impl SolidSynthesis {
+    /// Prepares the `n³` solid texture of `crop` (`[x, y, w, h]` or empty) of an RGBA image;
+    /// throws the error's message (bad crop, too small, side out of range).
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Vec<u32>,
+        seed: u32,
+        n: u32,
+    ) -> Result<SolidSynthesis, JsValue> {
+        let job =
+            crate::pyramid_job::SolidJob::new(rgba, width, height, parse_crop(&crop)?, seed, n)
+                .map_err(js_error)?;
+        Ok(SolidSynthesis { job })
+    }
+
+    /// Rounds done.
+    pub fn done(&self) -> usize {
+        self.job.progress().0
+    }
+
+    /// Rounds in all.
+    pub fn steps(&self) -> usize {
+        self.job.progress().1
+    }
+
+    /// Runs the next round; returns whether any remain.
+    pub fn step(&mut self) -> bool {
+        self.job.step()
+    }
+
+    /// The volume's side.
+    pub fn side(&self) -> u32 {
+        self.job.side()
+    }
+
+    /// Voxels per photo pixel of the crop.
+    #[wasm_bindgen(js_name = voxelsPerUnit)]
+    pub fn voxels_per_unit(&self) -> f32 {
+        self.job.voxels_per_unit()
+    }
+
+    /// The volume as it stands, RGBA8 voxels (x fastest, then y, then z).
+    pub fn rgba(&self) -> Vec<u8> {
+        self.job.rgba()
+    }
+}
+
 /// Helper-worker job: refines families of a `Suggestions` job of another worker, from that
 /// job's `preparedPixels`, `preparedSize` and seed (the same retrieval, so the same results).
 #[wasm_bindgen]

@@ -2,10 +2,14 @@
 //! at a time ([`proctex::heeger_bergen::Synthesis`]), so that the worker can report progress
 //! and see Cancel between rounds. The crop is reduced to the analysis size first, as the
 //! analysis reduces it, and synthesised at that size: a tile of the crop's extent.
+//!
+//! The solid texture of the crop ([`SolidJob`], Heeger & Bergen §4) runs the same way.
 
 use proctex::analyze::Options;
+use proctex::heeger_bergen::solid::{SolidOptions, SolidSynthesis};
 use proctex::heeger_bergen::{MAX_SYNTHESIS_PIXELS, RasterOptions, Synthesis};
 use proctex::render::Image;
+use proctex::solid::Voxels;
 
 use crate::jobs::{PAST_THE_LIMIT_IN_THE_PAGE, region};
 
@@ -96,6 +100,71 @@ impl PyramidJob {
     }
 }
 
+/// A solid texture of the crop in progress, for the sphere and cube views.
+///
+/// The crop is reduced so that its longer side is twice the volume's: a slice of the volume then
+/// spans half the crop, and a voxel stands for `crop / (2n)` photo pixels, so the sphere shows
+/// the volume at the photo's scale (as the procedural solid is shown). Synthesising from the
+/// crop at the analysis size instead would make a voxel a 512-px analysis pixel and the volume a
+/// small tile repeated many times over the sphere; the volume's side, not the sample's, bounds
+/// what it can hold (its pyramid has at most `max_scales(n)` scales).
+#[derive(Clone, Debug)]
+pub struct SolidJob {
+    synthesis: SolidSynthesis,
+    voxels_per_unit: f32,
+}
+
+impl SolidJob {
+    /// Starts the `n³` solid texture of `crop` (photo pixels; `None`: all) of an RGBA image,
+    /// with the paper's defaults and `seed`.
+    pub fn new(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Option<[u32; 4]>,
+        seed: u32,
+        n: u32,
+    ) -> proctex::error::Result<SolidJob> {
+        let region = region(rgba, width, height, crop)?;
+        let sample = region.reduce_to(2 * n);
+        let opts = SolidOptions {
+            n,
+            seed,
+            ..SolidOptions::default()
+        };
+        Ok(SolidJob {
+            synthesis: SolidSynthesis::new(&sample, &opts)?,
+            voxels_per_unit: sample.width as f32 / region.width as f32,
+        })
+    }
+
+    /// Rounds done and in all.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.synthesis.done(), self.synthesis.steps())
+    }
+
+    /// Runs the next round; returns whether any remain.
+    pub fn step(&mut self) -> bool {
+        self.synthesis.step()
+    }
+
+    /// The volume's side.
+    pub fn side(&self) -> u32 {
+        self.synthesis.side()
+    }
+
+    /// Voxels per photo pixel of the crop (world units).
+    pub fn voxels_per_unit(&self) -> f32 {
+        self.voxels_per_unit
+    }
+
+    /// The volume as it stands, RGBA8 voxels (x fastest, then y, then z).
+    pub fn rgba(&self) -> Vec<u8> {
+        let v = self.synthesis.volume();
+        Voxels::from_rgb(v.n, &v.voxels).rgba
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -157,5 +226,24 @@ mod tests {
         assert_ne!(halfway, mix(1.0));
         let e = PyramidJob::mixture(&a, 96, 96, crop, 1, &b, (64, 79), 0.5).unwrap_err();
         assert!(e.to_string().contains("bytes of RGBA"), "{e}");
+    }
+
+    /// The solid job reduces the crop to twice the volume's side, says how many voxels a photo
+    /// pixel is, and makes an n³ volume of the crop's colours in 3 × 5 rounds.
+    #[test]
+    fn the_solid_job_makes_a_volume_at_the_crops_scale() {
+        let rgba = checker(1200, 300);
+        let mut job = SolidJob::new(&rgba, 1200, 300, Some([100, 0, 256, 256]), 1, 16).unwrap();
+        assert_eq!((job.side(), job.progress()), (16, (0, 15)));
+        assert_eq!(job.voxels_per_unit(), 32.0 / 256.0);
+        while job.step() {}
+        let out = job.rgba();
+        assert_eq!(out.len(), 16 * 16 * 16 * 4);
+        let colours: std::collections::BTreeSet<[u8; 3]> =
+            out.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect();
+        assert!(colours.len() > 20, "{} distinct colours", colours.len());
+        assert!(out.chunks_exact(4).all(|p| p[3] == 255));
+        let e = SolidJob::new(&rgba, 1200, 300, Some([0, 0, 256, 256]), 1, 200).unwrap_err();
+        assert!(e.to_string().contains("--solid 200"), "{e}");
     }
 }
