@@ -80,11 +80,13 @@ let solidJob = 0; // the Heeger–Bergen solid texture the app waits for (0: non
 
 // The Heeger–Bergen synthesis of crop [x, y, w, h] of the current photo, for the app's
 // pyramid view; a new one supersedes the one running (which is cancelled).
-// `mix`: absent, or JSON { sample: name | params: json, m } for a texture mixture.
-async function synthesisePyramid(x, y, w, h, seed, mix) {
+// `mix`: absent, or JSON { sample: name | params: json, m } for a texture mixture (B); `a`:
+// absent (the crop), or the same JSON for the texture synthesised (A).
+async function synthesisePyramid(x, y, w, h, seed, mix, a) {
   if (pyramidJob) worker.postMessage({ type: 'cancelPyramid', id: pyramidJob });
   const [id, reply] = job({
     type: 'pyramid', crop: [x, y, w, h], seed, mix: mix ? JSON.parse(mix) : undefined,
+    a: a ? JSON.parse(a) : undefined,
   });
   pyramidJob = id;
   const m = await reply;
@@ -471,7 +473,9 @@ window.proctexHost = {
     if (m.type === 'error' && suggestJob === id) wasm.suggestionsFailed(m.message);
   },
   cancelSuggestions: () => worker.postMessage({ type: 'cancelSuggest' }),
-  synthesisePyramid: (x, y, w, h, seed, mix) => { synthesisePyramid(x, y, w, h, seed, mix); },
+  synthesisePyramid: (x, y, w, h, seed, mix, a) => {
+    synthesisePyramid(x, y, w, h, seed, mix, a);
+  },
   cancelPyramid: () => worker.postMessage({ type: 'cancelPyramid', id: pyramidJob }),
   synthesiseSolid: (x, y, w, h, seed, n) => { synthesiseSolid(x, y, w, h, seed, n); },
   cancelSolid: () => worker.postMessage({ type: 'cancelPyramid', id: solidJob }),
@@ -508,9 +512,12 @@ window.proctex = {
   setParams: (json) => wasm.setParams(typeof json === 'string' ? json : JSON.stringify(json)),
   setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
   setViewMode: (mode) => wasm.setViewMode(mode),
-  // The pyramid view's texture mixture: `source` 'sample:NAME' or 'preset:NAME' (null: none),
-  // `m` from 0 (the photo's synthesis) to 1 (the source's).
-  setPyramidMix: (source, m) => wasm.setPyramidMix(source ?? undefined, m ?? 0),
+  // The pyramid view's texture mixture: `source` (B) 'sample:NAME' or 'preset:NAME' (null:
+  // none), `m` from 0 (A's synthesis) to 1 (B's), `a` (A) likewise (null: the photo's crop).
+  setPyramidMix: (source, m, a) => wasm.setPyramidMix(source ?? undefined, m ?? 0, a ?? undefined),
+  // The sphere and cube views' texture: 'procedural' or 'heeger-bergen' (the crop's raster
+  // volume, `side`³ voxels: 64 or 128).
+  setSolidSource: (source, side) => wasm.setSolidSource(source, side ?? 64),
   setFlatShader: (on) => wasm.setFlatShader(on),
   setFrameCache: (on) => wasm.setFrameCache(on),
   setViewLimit: (width, height) => wasm.setViewLimit(width, height),

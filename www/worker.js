@@ -353,17 +353,20 @@ async function handle(m) {
       return;
     }
     case 'pyramid': {
-      // The Heeger–Bergen synthesis of the current photo's crop.
-      if (!photo) throw new Error('no photo to synthesise from');
-      const crop = new Uint32Array(m.crop);
+      // The Heeger–Bergen synthesis of the current photo's crop, or of A (a shipped sample or a
+      // preset's texture, whole).
+      let a;
+      if (m.a) a = { ...(await mixtureSource(m.a)), crop: new Uint32Array(0) };
+      else if (photo) a = { ...photo, crop: new Uint32Array(m.crop) };
+      else throw new Error('no photo to synthesise from');
       let job;
       if (m.mix) {
-        // A texture mixture with a shipped sample photo or a preset's texture (rendered here).
+        // A texture mixture with B: a shipped sample photo or a preset's texture.
         const b = await mixtureSource(m.mix);
-        job = wasm.PyramidSynthesis.mixture(photo.rgba, photo.width, photo.height, crop, m.seed,
+        job = wasm.PyramidSynthesis.mixture(a.rgba, a.width, a.height, a.crop, m.seed,
           b.rgba, b.width, b.height, m.mix.m);
       } else {
-        job = new wasm.PyramidSynthesis(photo.rgba, photo.width, photo.height, crop, m.seed);
+        job = new wasm.PyramidSynthesis(a.rgba, a.width, a.height, a.crop, m.seed);
       }
       await runRounds(m.id, job, t0, () => {
         const [width, height] = job.size();
@@ -409,7 +412,7 @@ async function handle(m) {
   }
 }
 
-// The second texture of a mixture: a shipped sample photo ({ sample: name }) or a preset's
+// A texture of a mixture: a shipped sample photo ({ sample: name }) or a preset's
 // texture ({ params: json }, rendered on the CPU at 256²), as RGBA.
 const MIX_PRESET_SIDE = 256;
 async function mixtureSource(mix) {

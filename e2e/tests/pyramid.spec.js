@@ -6,9 +6,9 @@ const {
   expect, openApp, state, waitFrames, grab, channelStats, clickWidget, waitAnalyses,
 } = require('./helpers');
 
-// Three panes of 192 × 288 CSS px: a 160² grab at the top of each stays clear of the controls
-// at the bottom of the synthesis pane ("Mix with", m, Cancel / Download).
-const VIEW = [576, 288];
+// Three panes of 192 × 320 CSS px: a 160² grab at the top of each stays clear of the controls
+// at the bottom of the synthesis pane (A, B, m, Cancel / Download: 130 px).
+const VIEW = [576, 320];
 
 // The 160² square at the top of a pane, centred across it.
 function upper(rect) {
@@ -95,13 +95,13 @@ test('Cancel stops the pyramid synthesis, and it can run again', async ({ page }
   await expectSynthesisOfPhoto(page);
 });
 
-test('the mixture slider at 0 and 1 gives the two syntheses', async ({ page }) => {
+test('the mixture slider at 0 and 1 gives the two syntheses; A and B come from anywhere', async ({ page }) => {
   await openApp(page, { view: VIEW });
   await clickWidget(page, 'mode.pyramid');
   await waitSyntheses(page, 1);
   let s = await state(page);
   const own = s.pyramid.checksum;
-  expect(s.widgets['pyramid.mix']).toBeTruthy(); // "Mix with", over the synthesis
+  expect(s.widgets['pyramid.mix']).toBeTruthy(); // B ("mix with"), over the synthesis
   const gravel = 'sample:skimage_gravel_512.png';
   const mixAt = async (m, n) => {
     await page.evaluate(([src, t]) => window.proctex.setPyramidMix(src, t), [gravel, m]);
@@ -118,16 +118,20 @@ test('the mixture slider at 0 and 1 gives the two syntheses', async ({ page }) =
   s = await state(page);
   expect(s.widgets['pyramid.m']).toBeTruthy();
   await expectSynthesisOfPhotoColours(page, 30);
-  // m = 1 is the gravel photo's own synthesis (both photos are 512²: the same size).
-  await page.evaluate(() => window.proctex.setPyramidMix(null, 0));
-  const before = s.analyses;
-  await page.evaluate(() => window.proctex.loadSample('skimage_gravel_512.png'));
-  await waitAnalyses(page, before + 1);
+  // m = 1 is the gravel sample's own synthesis, picked as A (both photos are 512²: the same
+  // size).
+  await page.evaluate(() => window.proctex.setPyramidMix(null, 0, 'sample:skimage_gravel_512.png'));
   await waitSyntheses(page, 5);
   s = await state(page);
-  expect(s.pyramid.of[0]).toBe('skimage_gravel_512.png');
+  expect(s.pyramid.a).toBe('sample:skimage_gravel_512.png');
   expect(s.pyramid.mix).toBeNull();
   expect(s.pyramid.checksum).toBe(towardsGravel);
+  // A as well as B from the samples: A = gravel at m = 0 is gravel's synthesis again.
+  await page.evaluate(() => window.proctex.setPyramidMix(
+    'sample:skimage_brick_512.png', 0, 'sample:skimage_gravel_512.png'));
+  await waitSyntheses(page, 6);
+  expect((await state(page)).pyramid.checksum).toBe(towardsGravel);
+  expect((await state(page)).widgets['pyramid.a']).toBeTruthy();
 });
 
 // The synthesis pane is a real texture (it varies), whatever it mixes.

@@ -183,6 +183,63 @@ pub fn pyramid_failed(message: String) {
     send(Command::PyramidFailed(message));
 }
 
+/// The worker ran `done` of `total` rounds of the solid texture the app asked for.
+#[wasm_bindgen(js_name = solidProgress)]
+pub fn solid_progress(done: u32, total: u32) {
+    send(Command::SolidProgress { done, total });
+}
+
+/// The solid texture the app asked for: `n³` RGBA8 voxels (x fastest), voxels per photo pixel,
+/// and its time.
+#[wasm_bindgen(js_name = solidDone)]
+pub fn solid_done(rgba: Vec<u8>, n: u32, voxels_per_unit: f32, ms: f64) -> Result<(), JsValue> {
+    if n == 0 || rgba.len() != (n as usize).pow(3) * 4 {
+        return Err(JsValue::from_str("solid texture: wrong size"));
+    }
+    if !(voxels_per_unit.is_finite() && voxels_per_unit > 0.0) {
+        return Err(JsValue::from_str("solid texture: bad scale"));
+    }
+    send(Command::SolidDone {
+        rgba,
+        n,
+        voxels_per_unit,
+        ms,
+    });
+    Ok(())
+}
+
+/// The solid texture was cancelled (the user's Cancel, or a newer one).
+#[wasm_bindgen(js_name = solidCancelled)]
+pub fn solid_cancelled() {
+    send(Command::SolidCancelled);
+}
+
+/// The solid texture failed; the message says why.
+#[wasm_bindgen(js_name = solidFailed)]
+pub fn solid_failed(message: String) {
+    send(Command::SolidFailed(message));
+}
+
+/// The sphere and cube views' texture: `source` "procedural" or "heeger-bergen" (the raster
+/// volume of the crop, `side³` voxels: 64 or 128).
+#[wasm_bindgen(js_name = setSolidSource)]
+pub fn set_solid_source(source: String, side: u32) -> Result<(), JsValue> {
+    let raster = match source.as_str() {
+        "procedural" => false,
+        "heeger-bergen" => true,
+        _ => {
+            return Err(JsValue::from_str(
+                "solid source must be procedural or heeger-bergen",
+            ));
+        }
+    };
+    if !crate::app::SOLID_SIDES.contains(&side) {
+        return Err(JsValue::from_str("solid side must be 64 or 128"));
+    }
+    send(Command::SetSolidSource { raster, side });
+    Ok(())
+}
+
 /// The model statistics the app asked for (`proctexHost.modelStats(params)`).
 #[wasm_bindgen(js_name = modelStatsDone)]
 pub fn model_stats_done(params_json: String, stats_json: String) -> Result<(), JsValue> {
@@ -202,22 +259,22 @@ pub fn set_view_mode(mode: String) -> Result<(), JsValue> {
     Ok(())
 }
 
-/// The pyramid view's texture mixture: `source` `sample:NAME` (a shipped sample photo) or
-/// `preset:NAME` (a preset's texture), or absent for none; `m` from 0 (the photo's synthesis)
-/// to 1 (the source's).
+/// The pyramid view's texture mixture: `source` (B) `sample:NAME` (a shipped sample photo) or
+/// `preset:NAME` (a preset's texture), or absent for none; `m` from 0 (A's synthesis) to 1
+/// (B's); `a` (A) likewise, or absent for the photo's crop.
 #[wasm_bindgen(js_name = setPyramidMix)]
-pub fn set_pyramid_mix(source: Option<String>, m: f32) -> Result<(), JsValue> {
+pub fn set_pyramid_mix(source: Option<String>, m: f32, a: Option<String>) -> Result<(), JsValue> {
     if !(0.0..=1.0).contains(&m) {
         return Err(JsValue::from_str("m must be between 0 and 1"));
     }
-    if let Some(s) = &source
-        && !(s.starts_with("sample:") || s.starts_with("preset:"))
-    {
-        return Err(JsValue::from_str(
-            "source must be sample:NAME or preset:NAME",
-        ));
+    for s in [&source, &a].into_iter().flatten() {
+        if !(s.starts_with("sample:") || s.starts_with("preset:")) {
+            return Err(JsValue::from_str(
+                "a texture must be sample:NAME or preset:NAME",
+            ));
+        }
     }
-    send(Command::SetPyramidMix(source.map(|s| (s, m))));
+    send(Command::SetPyramidMix(source.map(|s| (s, m)), a));
     Ok(())
 }
 

@@ -97,8 +97,24 @@ pub enum Command {
     PyramidCancelled,
     /// The pyramid synthesis failed.
     PyramidFailed(String),
-    /// The pyramid view's mixture: source (`sample:NAME` or `preset:NAME`) and m; `None`: none.
-    SetPyramidMix(Option<(String, f32)>),
+    /// The pyramid view's mixture: B's source (`sample:NAME` or `preset:NAME`) and m (`None`:
+    /// none), and A's source (`None`: the crop).
+    SetPyramidMix(Option<(String, f32)>, Option<String>),
+    /// The worker ran `done` of `total` rounds of the solid texture.
+    SolidProgress { done: u32, total: u32 },
+    /// The solid texture is done: `n³` RGBA8 voxels, their scale, in `ms` milliseconds.
+    SolidDone {
+        rgba: Vec<u8>,
+        n: u32,
+        voxels_per_unit: f32,
+        ms: f64,
+    },
+    /// The solid texture was cancelled.
+    SolidCancelled,
+    /// The solid texture failed.
+    SolidFailed(String),
+    /// The solid views' source: the Heeger–Bergen volume (`true`) of a side, or procedural.
+    SetSolidSource { raster: bool, side: u32 },
     /// PNG tile export choices: side, bits (8 or 16), CPU even with a GPU.
     TileOptions {
         size: u32,
@@ -171,6 +187,8 @@ pub struct Snapshot {
     pub suggest_error: Option<String>,
     /// The pyramid (Heeger–Bergen) view's synthesis.
     pub pyramid: super::pyramid::PyramidSnapshot,
+    /// The solid views' source and Heeger–Bergen volume.
+    pub solid: super::solid::SolidSnapshot,
     /// Undo/redo depths.
     pub undo: usize,
     /// Redo depth.
@@ -274,7 +292,17 @@ impl ProctexApp {
                 Command::PyramidDone { rgba, size, ms } => self.pyramid_done(ctx, rgba, size, ms),
                 Command::PyramidCancelled => self.pyramid_stopped(None),
                 Command::PyramidFailed(e) => self.pyramid_stopped(Some(e)),
-                Command::SetPyramidMix(mix) => self.set_pyramid_mix(mix),
+                Command::SetPyramidMix(mix, a) => self.set_pyramid_mix(mix, a),
+                Command::SolidProgress { done, total } => self.solid_progress(done, total),
+                Command::SolidDone {
+                    rgba,
+                    n,
+                    voxels_per_unit,
+                    ms,
+                } => self.solid_done(rgba, n, voxels_per_unit, ms),
+                Command::SolidCancelled => self.solid_stopped(None),
+                Command::SolidFailed(e) => self.solid_stopped(Some(e)),
+                Command::SetSolidSource { raster, side } => self.set_solid_source(raster, side),
                 Command::ModelStats(stats) => {
                     let (p, s) = *stats;
                     self.model_stats = Some((p, s));
@@ -376,6 +404,7 @@ impl ProctexApp {
                 morph_t: self.presets.morph.as_ref().map(|_| self.presets.t),
                 morph_playing: self.presets.playing,
                 pyramid: self.pyramid.snapshot(),
+                solid: self.solid.snapshot(),
                 undo: self.undo.len(),
                 redo: self.redo.len(),
                 suggestions: self.suggest.rows.clone(),

@@ -11,7 +11,7 @@
 //! defined here: `photo` (photo panel, analysis results), `crop` (the crop rectangle),
 //! `suggestions` (the ranked models), `presets` (gallery and user presets), `morph`, `export`
 //! (shaders), `tiles` (PNG tile export), `pyramid` (the Heeger–Bergen raster synthesis beside
-//! the texture), `plots`, `controls` (parameters, undo/redo), `view`
+//! the texture), `solid` (the solid views' Heeger–Bergen volume), `plots`, `controls` (parameters, undo/redo), `view`
 //! (toolbar, central view, paint callback) and `bridge` (commands from the page, the snapshot
 //! for it, calls into it).
 
@@ -35,6 +35,7 @@ mod photo;
 mod plots;
 mod presets;
 mod pyramid;
+mod solid;
 mod suggestions;
 mod tiles;
 mod view;
@@ -43,6 +44,7 @@ use bridge::host;
 pub use bridge::{CONTEXT, Command, SNAPSHOT, send};
 use crop::CropDrag;
 use export::export_shader;
+pub use solid::SIDES as SOLID_SIDES;
 
 /// A downscaled copy of the photo for the crop panel and the split view.
 #[derive(Debug)]
@@ -184,6 +186,8 @@ pub struct ProctexApp {
     refine_budget_s: f32,
     /// The pyramid view's raster synthesis.
     pyramid: pyramid::PyramidState,
+    /// The solid views' source and the Heeger–Bergen volume.
+    solid: solid::SolidState,
 }
 
 /// The automatic model choice's list: filled by the worker after each analysis.
@@ -318,6 +322,7 @@ impl ProctexApp {
             suggest: SuggestState::default(),
             refine_budget_s: 0.0,
             pyramid: pyramid::PyramidState::default(),
+            solid: solid::SolidState::default(),
             gpu: None,
             presets: PresetsState {
                 duration_s: 4.0,

@@ -4,9 +4,9 @@
 //! worker (`proctexHost.synthesisePyramid`, one round per step, with progress and Cancel)
 //! whenever this view shows a photo or crop it has not synthesised yet; it tiles seamlessly, so
 //! it is drawn repeated across the window, and it downloads as a PNG tile. A texture mixture
-//! (Heeger & Bergen §5) with a shipped sample or a preset's texture runs the same way: "Mix
-//! with" picks the second texture, the slider how far towards it (0: the crop's synthesis, 1:
-//! the other's).
+//! (Heeger & Bergen §5) runs the same way between two textures A and B, each the crop, a
+//! shipped sample or a preset's texture: "A" picks the first (the crop by default), "B" (mix
+//! with) the second, the slider how far towards it (0: A's synthesis, 1: B's).
 
 use eframe::egui;
 use proctex::params::Params;
@@ -16,16 +16,19 @@ use wasm_bindgen::JsValue;
 use super::{ProctexApp, SAMPLES, host};
 use crate::renderer::Pass;
 
-/// What a synthesis is of: the photo, the crop, and the mixture (source and m), if any.
-type Key = (String, [u32; 4], Option<(String, f32)>);
+/// What a synthesis is of: the photo, the crop, A when it is not the crop, and the mixture
+/// (B's source and m), if any.
+type Key = (String, [u32; 4], Option<String>, Option<(String, f32)>);
 
 /// The synthesis shown (or being made) and what it is of.
 #[derive(Default)]
 pub(super) struct PyramidState {
     /// What the synthesis shown or running is of.
     key: Option<Key>,
-    /// The mixture asked for: source (`sample:NAME` or `preset:NAME`) and m.
+    /// The mixture asked for: B's source (`sample:NAME` or `preset:NAME`) and m.
     mix: Option<(String, f32)>,
+    /// A's source when it is not the crop (`sample:NAME` or `preset:NAME`).
+    a: Option<String>,
     /// The mixture slider's value while it is dragged (applied on release).
     slider: f32,
     texture: Option<egui::TextureHandle>,
@@ -62,8 +65,10 @@ pub struct PyramidSnapshot {
     pub finished: u64,
     /// The photo and crop the synthesis shown is of.
     pub of: Option<(String, [u32; 4])>,
-    /// The mixture the synthesis shown is of: source and m.
+    /// The mixture the synthesis shown is of: B's source and m.
     pub mix: Option<(String, f32)>,
+    /// A's source when the synthesis shown is not of the crop.
+    pub a: Option<String>,
     /// FNV-1a hash of the synthesis' RGBA (tests compare syntheses by it).
     pub checksum: Option<u32>,
 }
@@ -86,24 +91,44 @@ impl PyramidState {
                 .texture
                 .as_ref()
                 .and(self.key.as_ref())
+                .and_then(|k| k.3.clone()),
+            a: self
+                .texture
+                .as_ref()
+                .and(self.key.as_ref())
                 .and_then(|k| k.2.clone()),
             checksum: self.texture.as_ref().map(|_| self.checksum),
         }
     }
 }
 
+/// A mixture texture's name for labels: the sample's file stem or the preset's name.
+fn source_label(source: &str) -> &str {
+    source
+        .split_once(':')
+        .map_or(source, |(_, n)| n)
+        .trim_end_matches(".png")
+}
+
+/// A's label: its source's, or the crop.
+fn a_label(a: &Option<String>) -> &str {
+    a.as_deref().map_or("the crop", source_label)
+}
+
 /// FNV-1a, 32 bits.
-fn fnv1a(bytes: &[u8]) -> u32 {
+pub(super) fn fnv1a(bytes: &[u8]) -> u32 {
     bytes.iter().fold(0x811c_9dc5u32, |h, &b| {
         (h ^ b as u32).wrapping_mul(0x0100_0193)
     })
 }
 
 impl ProctexApp {
-    /// Sets (or clears) the mixture; the view synthesises it when it shows.
-    pub(super) fn set_pyramid_mix(&mut self, mix: Option<(String, f32)>) {
+    /// Sets (or clears) the mixture's B and m, and A (`None`: the crop); the view synthesises
+    /// it when it shows.
+    pub(super) fn set_pyramid_mix(&mut self, mix: Option<(String, f32)>, a: Option<String>) {
         self.pyramid.slider = mix.as_ref().map_or(0.5, |m| m.1);
         self.pyramid.mix = mix;
+        self.pyramid.a = a;
     }
 
     pub(super) fn pyramid_progress(&mut self, done: u32, total: u32) {
@@ -145,14 +170,15 @@ impl ProctexApp {
         p.error = error.map(|e| proctex::limits::bounded_message(&e));
     }
 
-    /// What the view should show: the current photo and crop, and the mixture.
+    /// What the view should show: the current photo and crop, A, and the mixture.
     fn pyramid_key(&self) -> Option<Key> {
+        let p = &self.pyramid;
         self.photo
             .as_ref()
-            .map(|p| (p.name.clone(), p.crop, self.pyramid.mix.clone()))
+            .map(|photo| (photo.name.clone(), photo.crop, p.a.clone(), p.mix.clone()))
     }
 
-    /// The mixture's second texture for the worker, as JSON: `{"sample": NAME, "m": m}` or
+    /// A texture of a mixture for the worker, as JSON: `{"sample": NAME, "m": m}` or
     /// `{"params": JSON, "m": m}`.
     fn mix_source(&self, (source, m): &(String, f32)) -> Result<String, String> {
         if let Some(name) = source.strip_prefix("sample:") {
@@ -176,10 +202,18 @@ impl ProctexApp {
         };
         let mut args: Vec<JsValue> = key.1.iter().map(|&v| JsValue::from(v)).collect();
         args.push(1.into()); // the seed
-        match key.2.as_ref().map(|mix| self.mix_source(mix)) {
-            None => {}
-            Some(Ok(json)) => args.push(json.into()),
-            Some(Err(e)) => {
+        let b = key.3.as_ref().map(|mix| self.mix_source(mix)).transpose();
+        let a = key
+            .2
+            .as_ref()
+            .map(|a| self.mix_source(&(a.clone(), 0.0)))
+            .transpose();
+        match (b, a) {
+            (Ok(b), Ok(a)) => {
+                args.push(b.map_or(JsValue::UNDEFINED, JsValue::from));
+                args.push(a.map_or(JsValue::UNDEFINED, JsValue::from));
+            }
+            (Err(e), _) | (_, Err(e)) => {
                 let p = &mut self.pyramid;
                 (p.key, p.texture, p.running, p.cancelled) = (Some(key), None, false, false);
                 p.error = Some(e);
@@ -268,7 +302,8 @@ impl ProctexApp {
                 egui::Color32::from_gray(230),
             );
         };
-        let (Some(texture), Some((_, crop, _))) = (&self.pyramid.texture, &self.pyramid.key) else {
+        let (Some(texture), Some((_, crop, a, mix))) = (&self.pyramid.texture, &self.pyramid.key)
+        else {
             let p = &self.pyramid;
             let status = if let Some(e) = &p.error {
                 format!("Heeger–Bergen synthesis failed: {e}")
@@ -289,8 +324,12 @@ impl ProctexApp {
             return;
         };
         // World units are the crop's photo pixels; the synthesis covers the crop's extent and
-        // repeats (the texture's wrap mode).
-        let [cw, ch] = [crop[2] as f32, crop[3] as f32];
+        // repeats (the texture's wrap mode). A synthesis of another A is shown one texel per
+        // world unit.
+        let [cw, ch] = match a {
+            None => [crop[2] as f32, crop[3] as f32],
+            Some(_) => self.pyramid.size.map(|v| v as f32),
+        };
         let upp = self.view.units_per_point;
         let o = self.view.origin;
         let uv = egui::Rect::from_min_max(
@@ -301,51 +340,78 @@ impl ProctexApp {
             ),
         );
         painter.image(texture.id(), rect, uv, egui::Color32::WHITE);
+        // What it is of, on a second line (the pane is narrow).
+        let of = match (a, mix) {
+            (None, None) => String::new(),
+            (a, None) => format!("\nof {}", a_label(a)),
+            (a, Some((b, m))) => format!("\n{} → {} at {m:.2}", a_label(a), source_label(b)),
+        };
         label(match self.pyramid.ms {
-            Some(ms) => format!("Heeger–Bergen ({:.1} s)", ms / 1000.0),
-            None => "Heeger–Bergen".into(),
+            Some(ms) => format!("Heeger–Bergen ({:.1} s){of}", ms / 1000.0),
+            None => format!("Heeger–Bergen{of}"),
         });
     }
 
-    /// "Mix with" (none, a sample, a preset) and the mixture's m, over the synthesis pane.
+    /// "A" (the crop, a sample, a preset), "B" (mix with: none, a sample, a preset) and the
+    /// mixture's m, over the synthesis pane.
     fn mix_controls(&mut self, ui: &mut egui::Ui, rect: egui::Rect) {
-        // Two rows above the button: the source, then m.
+        // Three rows above the button: A, B, then m.
         let at = egui::Rect::from_min_size(
-            rect.left_bottom() + egui::vec2(8.0, -100.0),
-            egui::vec2((rect.width() - 16.0).max(120.0), 62.0),
+            rect.left_bottom() + egui::vec2(8.0, -130.0),
+            egui::vec2((rect.width() - 16.0).max(120.0), 92.0),
         );
-        let label = |s: &Option<(String, f32)>| match s {
-            None => "none".to_string(),
-            Some((source, _)) => source
-                .split_once(':')
-                .map_or(source.as_str(), |(_, n)| n)
-                .trim_end_matches(".png")
-                .to_string(),
-        };
+        let width = (at.width() - 4.0).min(220.0);
+        let mut a = self.pyramid.a.clone();
         let mut choice = self.pyramid.mix.clone();
         let mut slider = self.pyramid.slider;
         let mut released = false;
         let mut rects = Vec::new();
         let presets = &self.presets.list;
+        // Every texture a mixture can take, as (source, label).
+        let sources: Vec<(String, String)> = SAMPLES
+            .iter()
+            .map(|n| {
+                (
+                    format!("sample:{n}"),
+                    n.trim_end_matches(".png").to_string(),
+                )
+            })
+            .chain(
+                presets
+                    .iter()
+                    .map(|p| (format!("preset:{}", p.name), format!("preset {}", p.name))),
+            )
+            .collect();
         ui.scope_builder(egui::UiBuilder::new().max_rect(at), |ui| {
             ui.vertical(|ui| {
+                let r = egui::ComboBox::from_id_salt("pyramid.a")
+                    .selected_text(format!("A: {}", a_label(&a)))
+                    .width(width)
+                    .show_ui(ui, |ui| {
+                        ui.selectable_value(&mut a, None, "the crop");
+                        for (source, label) in &sources {
+                            ui.selectable_value(&mut a, Some(source.clone()), label);
+                        }
+                    })
+                    .response
+                    .on_hover_text("The texture synthesised (and mixed from)");
+                rects.push(("pyramid.a", r));
                 // A first pick starts halfway.
                 let m = choice.as_ref().map_or(0.5, |c| c.1);
+                let b = choice.as_ref().map_or("none", |c| source_label(&c.0));
                 let r = egui::ComboBox::from_id_salt("pyramid.mix")
-                    .selected_text(format!("Mix with: {}", label(&choice)))
-                    .width((at.width() - 4.0).min(220.0))
+                    .selected_text(format!("B: {b}"))
+                    .width(width)
                     .show_ui(ui, |ui| {
                         ui.selectable_value(&mut choice, None, "none");
-                        for name in SAMPLES {
-                            let v = Some((format!("sample:{name}"), m));
-                            ui.selectable_value(&mut choice, v, name.trim_end_matches(".png"));
+                        for (source, label) in &sources {
+                            let v = Some((source.clone(), m));
+                            ui.selectable_value(&mut choice, v, label);
                         }
-                        for name in presets.iter().map(|p| &p.name) {
-                            let v = Some((format!("preset:{name}"), m));
-                            ui.selectable_value(&mut choice, v, format!("preset {name}"));
-                        }
-                    });
-                rects.push(("pyramid.mix", r.response.clone()));
+                    })
+                    .response
+                    .on_hover_text("Mix with: the texture the mixture goes to at m = 1");
+                rects.push(("pyramid.mix", r));
                 if let Some((_, m)) = &choice
                     && self.pyramid.mix.is_none()
                 {
@@ -354,7 +420,7 @@ impl ProctexApp {
                 if choice.is_some() {
                     let r = ui
                         .add(egui::Slider::new(&mut slider, 0.0..=1.0).text("m"))
-                        .on_hover_text("0: the crop's synthesis; 1: the other texture's");
+                        .on_hover_text("0: A's synthesis; 1: the other texture's");
                     released = r.drag_stopped() || (r.changed() && !r.dragged());
                     rects.push(("pyramid.m", r));
                 }
@@ -369,6 +435,9 @@ impl ProctexApp {
         }
         if choice != self.pyramid.mix {
             self.pyramid.mix = choice;
+        }
+        if a != self.pyramid.a {
+            self.pyramid.a = a;
         }
     }
 
@@ -403,10 +472,13 @@ impl ProctexApp {
 
     fn download_pyramid(&self) {
         let p = &self.pyramid;
-        let Some((name, _, mix)) = &p.key else {
+        let Some((photo, _, a, mix)) = &p.key else {
             return;
         };
-        let stem = name.rsplit_once('.').map_or(name.as_str(), |(s, _)| s);
+        let name = a
+            .as_deref()
+            .map_or(photo.as_str(), |a| a.split_once(':').map_or(a, |(_, n)| n));
+        let stem = name.rsplit_once('.').map_or(name, |(s, _)| s);
         let mixed = match mix {
             Some((source, m)) => {
                 let other = source.split_once(':').map_or(source.as_str(), |(_, n)| n);

@@ -1,5 +1,6 @@
 //! The texture view: the toolbar of view modes, the central panel (plane with pan and zoom,
-//! split against the photo, sphere and cube with orbit; the pyramid view is `pyramid`'s), the
+//! split against the photo, sphere and cube with orbit; the pyramid view is `pyramid`'s, the
+//! solid views' Heeger–Bergen source `solid`'s), the
 //! tile outline, and the paint callback that draws the cached view.
 
 use eframe::egui;
@@ -129,7 +130,18 @@ impl ProctexApp {
                     [px.x.round(), px.y.round()],
                     [(rect.min.x * ppp).round(), (rect.min.y * ppp).round()],
                 );
-                self.paint_texture(ui, rect, solid, Pass::Solid, View::default(), Some(sv));
+                self.keep_solid_current();
+                if let Some(volume) = self.solid.shown() {
+                    let source = ViewSource::Volume(sv, volume.clone());
+                    self.paint_view(ui, rect, solid, Pass::Solid, source);
+                } else if self.solid.raster {
+                    // The volume is on its way (or stopped): its status is in the controls.
+                    ui.painter()
+                        .rect_filled(rect, 0.0, egui::Color32::from_gray(28));
+                } else {
+                    self.paint_view(ui, rect, solid, Pass::Solid, ViewSource::Solid(sv));
+                }
+                self.solid_controls(ui, rect);
             }
             ViewMode::Pyramid => self.pyramid_view(ui, rect, &response, params),
             ViewMode::Plane | ViewMode::Split => {
@@ -240,6 +252,22 @@ impl ProctexApp {
         view: View,
         solid: Option<SolidView>,
     ) {
+        let source = match solid {
+            Some(sv) => ViewSource::Solid(sv),
+            None => ViewSource::Plane(view),
+        };
+        self.paint_view(ui, rect, params, pass, source);
+    }
+
+    /// Draws `source` (through the frame cache) into `rect`.
+    fn paint_view(
+        &self,
+        ui: &egui::Ui,
+        rect: egui::Rect,
+        params: Params,
+        pass: Pass,
+        source: ViewSource,
+    ) {
         let ppp = ui.ctx().pixels_per_point();
         let min = [(rect.min.x * ppp).round(), (rect.min.y * ppp).round()];
         let max = [(rect.max.x * ppp).round(), (rect.max.y * ppp).round()];
@@ -248,10 +276,7 @@ impl ProctexApp {
             TextureCallback {
                 params,
                 pass,
-                view: match solid {
-                    Some(sv) => ViewSource::Solid(sv),
-                    None => ViewSource::Plane(view),
-                },
+                view: source,
                 frame_offset: min.map(|v| v as i32),
                 frame_size: [0, 1].map(|i| (max[i] - min[i]).max(1.0) as u32),
                 fresh: !self.frame_cache,
