@@ -512,8 +512,8 @@ window.proctex = {
   setParams: (json) => wasm.setParams(typeof json === 'string' ? json : JSON.stringify(json)),
   setView: (x, y, unitsPerPoint) => wasm.setView(x, y, unitsPerPoint),
   setViewMode: (mode) => wasm.setViewMode(mode),
-  // The pyramid view's texture mixture: `source` (B) 'sample:NAME' or 'preset:NAME' (null:
-  // none), `m` from 0 (A's synthesis) to 1 (B's), `a` (A) likewise (null: the photo's crop).
+  // The pyramid view's texture mixture: `source` (B) 'sample:NAME', 'gallery:NAME',
+  // 'preset:NAME' or 'crop' (null: none), `m` from 0 (A's synthesis) to 1 (B's), `a` (A) likewise (null: the photo's crop).
   setPyramidMix: (source, m, a) => wasm.setPyramidMix(source ?? undefined, m ?? 0, a ?? undefined),
   // The sphere and cube views' texture: 'procedural' or 'heeger-bergen' (the crop's raster
   // volume, `side`³ voxels: 64 or 128).

@@ -412,10 +412,24 @@ async function handle(m) {
   }
 }
 
-// A texture of a mixture: a shipped sample photo ({ sample: name }) or a preset's
-// texture ({ params: json }, rendered on the CPU at 256²), as RGBA.
+// A texture of a mixture: a shipped sample photo ({ sample: name }), a preset's texture
+// ({ params: json }, rendered on the CPU at 256²) or the current photo's crop ({ crop: [x, y,
+// w, h] }), as RGBA.
 const MIX_PRESET_SIDE = 256;
 async function mixtureSource(mix) {
+  if (mix.crop) {
+    if (!photo) throw new Error('no photo to mix');
+    const [x, y, w, h] = mix.crop;
+    if (!(w > 0 && h > 0 && x + w <= photo.width && y + h <= photo.height)) {
+      throw new Error(`the crop ${w}×${h} at ${x}, ${y} reaches outside the ${photo.width}×${photo.height} photo`);
+    }
+    const rgba = new Uint8Array(w * h * 4);
+    for (let row = 0; row < h; row++) {
+      const start = ((y + row) * photo.width + x) * 4;
+      rgba.set(photo.rgba.subarray(start, start + w * 4), row * w * 4);
+    }
+    return { rgba, width: w, height: h };
+  }
   if (mix.sample) {
     const r = await fetch(new URL(`./samples/${mix.sample}`, import.meta.url));
     if (!r.ok) throw new Error(`${mix.sample}: HTTP ${r.status}`);

@@ -2,7 +2,7 @@
 const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
-const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, innerSquare, reveal, ROOT } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, innerSquare, reveal, ROOT, dropFile } = require('./helpers');
 
 test('opens on the sample, already rendered', async ({ page }) => {
   await openApp(page);
@@ -182,28 +182,6 @@ test('a corrupt file and a text file dropped on the page give a visible error an
   await page.waitForFunction((k) => window.proctex.state().analyses > k, n);
   expect((await state(page)).error).toBeNull();
 });
-
-// Dispatches a drop (or paste) of `file` on the page, as a real drag from the desktop does.
-async function dropFile(page, filePath, kind) {
-  const bytes = [...fs.readFileSync(filePath)];
-  const name = path.basename(filePath);
-  await page.evaluate(([b, n, k]) => {
-    const dt = new DataTransfer();
-    dt.items.add(new File([new Uint8Array(b)], n, { type: 'image/png' }));
-    if (k === 'drop') {
-      const target = document.getElementById('proctex_canvas');
-      target.dispatchEvent(new DragEvent('dragover', { dataTransfer: dt, bubbles: true, cancelable: true }));
-      target.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
-    } else {
-      document.dispatchEvent(new ClipboardEvent('paste', { clipboardData: dt, bubbles: true, cancelable: true }));
-    }
-  }, [bytes, name, kind]);
-  await page.waitForFunction((n) => {
-    window.proctex.requestRepaint();
-    return window.proctex.state().photo === n;
-  }, name, { polling: 100 });
-  await waitFrames(page, 3);
-}
 
 test('dropping a photo changes the params and the image, and the colours follow the photo', async ({ page }) => {
   await openApp(page);

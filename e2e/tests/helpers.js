@@ -178,7 +178,30 @@ async function suggestionsFor(page, sample) {
   return s;
 }
 
+// Dispatches a drop (or paste) of `file` on the page, as a real drag from the desktop does.
+async function dropFile(page, filePath, kind) {
+  const bytes = [...fs.readFileSync(filePath)];
+  const name = path.basename(filePath);
+  await page.evaluate(([b, n, k]) => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([new Uint8Array(b)], n, { type: 'image/png' }));
+    if (k === 'drop') {
+      const target = document.getElementById('proctex_canvas');
+      target.dispatchEvent(new DragEvent('dragover', { dataTransfer: dt, bubbles: true, cancelable: true }));
+      target.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    } else {
+      document.dispatchEvent(new ClipboardEvent('paste', { clipboardData: dt, bubbles: true, cancelable: true }));
+    }
+  }, [bytes, name, kind]);
+  await page.waitForFunction((n) => {
+    window.proctex.requestRepaint();
+    return window.proctex.state().photo === n;
+  }, name, { polling: 100 });
+  await waitFrames(page, 3);
+}
+
 module.exports = {
   expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender,
   innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, ROOT,
+  dropFile,
 };

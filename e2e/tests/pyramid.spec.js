@@ -2,8 +2,10 @@
 // the procedural texture, computed in the worker with progress and Cancel, again for a new
 // photo, and downloadable as a PNG tile.
 const { test } = require('@playwright/test');
+const fs = require('fs');
+const path = require('path');
 const {
-  expect, openApp, state, waitFrames, grab, channelStats, clickWidget, waitAnalyses,
+  expect, openApp, state, waitFrames, grab, channelStats, clickWidget, dropFile, ROOT,
 } = require('./helpers');
 
 // Three panes of 192 × 320 CSS px: a 160² grab at the top of each stays clear of the controls
@@ -41,7 +43,7 @@ async function expectSynthesisOfPhoto(page) {
   return s;
 }
 
-test('the pyramid view synthesises the sample, and a new photo again', async ({ page }) => {
+test('the pyramid view synthesises the sample, and a dropped photo again', async ({ page }) => {
   await openApp(page, { view: VIEW });
   await clickWidget(page, 'mode.pyramid');
   await waitSyntheses(page, 1);
@@ -50,18 +52,20 @@ test('the pyramid view synthesises the sample, and a new photo again', async ({ 
   expect(s.pyramid.of[0]).toBe(s.photo);
   expect(s.pyramid.size[0]).toBeGreaterThanOrEqual(256);
   console.log(`pyramid synthesis of ${s.photo} (${s.pyramid.size}) in ${s.pyramid.ms.toFixed(0)} ms`);
-  // A new photo, as a user drops one: its crop is synthesised in turn.
-  const before = s.analyses;
-  await page.evaluate(() => window.proctex.loadSample('skimage_gravel_512.png'));
-  await waitAnalyses(page, before + 1);
+  // A photo the app does not ship, dropped on the page: its crop is synthesised in turn.
+  const dev = path.join(ROOT, '..', 'shared', 'photos', 'dev', 'megaglest_crackedearth_256.png');
+  const photo = fs.existsSync(dev) ? dev : path.join(ROOT, 'www', 'samples', 'skimage_gravel_512.png');
+  const name = path.basename(photo);
+  await dropFile(page, photo, 'drop');
   await waitSyntheses(page, 2);
   s = await expectSynthesisOfPhoto(page);
-  expect(s.pyramid.of[0]).toBe('skimage_gravel_512.png');
+  expect(s.pyramid.of[0]).toBe(name);
   // Download PNG: the synthesis at its own size.
   const download = page.waitForEvent('download');
   await clickWidget(page, 'pyramid.download');
   const file = await download;
-  expect(file.suggestedFilename()).toBe(`skimage_gravel_512_heeger_bergen_${s.pyramid.size[0]}x${s.pyramid.size[1]}.png`);
+  const stem = name.replace(/\.png$/, '');
+  expect(file.suggestedFilename()).toBe(`${stem}_heeger_bergen_${s.pyramid.size[0]}x${s.pyramid.size[1]}.png`);
   const png = await page.evaluate(() => window.proctex.lastPng);
   expect([png.width, png.height]).toEqual(s.pyramid.size);
   expect(png.bytes).toBeGreaterThan(1000);
@@ -132,6 +136,21 @@ test('the mixture slider at 0 and 1 gives the two syntheses; A and B come from a
   await waitSyntheses(page, 6);
   expect((await state(page)).pyramid.checksum).toBe(towardsGravel);
   expect((await state(page)).widgets['pyramid.a']).toBeTruthy();
+  // And the crop as B: A = gravel, B = the crop at m = 1 is the crop's own synthesis.
+  await page.evaluate(() => window.proctex.setPyramidMix('crop', 1, 'sample:skimage_gravel_512.png'));
+  await waitSyntheses(page, 7);
+  s = await state(page);
+  expect(s.pyramid.mix).toEqual(['crop', 1]);
+  expect(s.pyramid.checksum).toBe(own);
+  // A gallery texture (the gravel sample's analysis, rendered at 256²) as A.
+  await page.waitForFunction(() => window.proctex.galleryReady, null, { timeout: 120_000 });
+  await page.evaluate(() => window.proctex.setPyramidMix(null, 0, 'gallery:skimage_gravel_512'));
+  await waitSyntheses(page, 8);
+  s = await state(page);
+  expect(s.pyramid.a).toBe('gallery:skimage_gravel_512');
+  expect(s.pyramid.error).toBeNull();
+  expect(s.pyramid.size).toEqual([256, 256]);
+  await expectSynthesisOfPhotoColours(page, 30);
 });
 
 // The synthesis pane is a real texture (it varies), whatever it mixes.

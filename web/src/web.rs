@@ -259,20 +259,26 @@ pub fn set_view_mode(mode: String) -> Result<(), JsValue> {
     Ok(())
 }
 
-/// The pyramid view's texture mixture: `source` (B) `sample:NAME` (a shipped sample photo) or
-/// `preset:NAME` (a preset's texture), or absent for none; `m` from 0 (A's synthesis) to 1
+/// The pyramid view's texture mixture: `source` (B) `sample:NAME` (a shipped sample photo),
+/// `gallery:NAME` (a gallery texture), `preset:NAME` (a preset's) or `crop` (the photo's crop),
+/// or absent for none; `m` from 0 (A's synthesis) to 1
 /// (B's); `a` (A) likewise, or absent for the photo's crop.
 #[wasm_bindgen(js_name = setPyramidMix)]
 pub fn set_pyramid_mix(source: Option<String>, m: f32, a: Option<String>) -> Result<(), JsValue> {
     if !(0.0..=1.0).contains(&m) {
         return Err(JsValue::from_str("m must be between 0 and 1"));
     }
-    for s in [&source, &a].into_iter().flatten() {
-        if !(s.starts_with("sample:") || s.starts_with("preset:")) {
-            return Err(JsValue::from_str(
-                "a texture must be sample:NAME or preset:NAME",
-            ));
-        }
+    let named = |s: &str| {
+        ["sample:", "preset:", "gallery:"]
+            .iter()
+            .any(|p| s.starts_with(p))
+    };
+    if source.as_deref().is_some_and(|s| !named(s) && s != "crop")
+        || a.as_deref().is_some_and(|s| !named(s))
+    {
+        return Err(JsValue::from_str(
+            "B must be crop, sample:NAME, gallery:NAME or preset:NAME; A one of the last three",
+        ));
     }
     send(Command::SetPyramidMix(source.map(|s| (s, m)), a));
     Ok(())

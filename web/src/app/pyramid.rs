@@ -102,8 +102,14 @@ impl PyramidState {
     }
 }
 
-/// A mixture texture's name for labels: the sample's file stem or the preset's name.
+/// B's source when it is the photo's crop (A's is `None`).
+const CROP: &str = "crop";
+
+/// A mixture texture's name for labels: the sample's file stem, the preset's name or the crop.
 fn source_label(source: &str) -> &str {
+    if source == CROP {
+        return "the crop";
+    }
     source
         .split_once(':')
         .map_or(source, |(_, n)| n)
@@ -181,17 +187,26 @@ impl ProctexApp {
     /// A texture of a mixture for the worker, as JSON: `{"sample": NAME, "m": m}` or
     /// `{"params": JSON, "m": m}`.
     fn mix_source(&self, (source, m): &(String, f32)) -> Result<String, String> {
+        if source == CROP {
+            let crop = self.photo.as_ref().map(|p| p.crop);
+            return Ok(serde_json::json!({ "crop": crop, "m": m }).to_string());
+        }
         if let Some(name) = source.strip_prefix("sample:") {
             return Ok(serde_json::json!({ "sample": name, "m": m }).to_string());
         }
-        let name = source.strip_prefix("preset:").unwrap_or(source);
         let p = &self.presets;
-        let preset = p
-            .list
-            .iter()
-            .chain(p.gallery.iter().map(|(g, _)| g))
-            .find(|x| x.name == name)
-            .ok_or_else(|| format!("no preset named {}", proctex::limits::quote(name)))?;
+        let gallery = p.gallery.iter().map(|(g, _)| g);
+        let preset = match source.strip_prefix("gallery:") {
+            Some(name) => gallery.clone().find(|x| x.name == name),
+            None => {
+                let name = source.strip_prefix("preset:").unwrap_or(source);
+                p.list.iter().chain(gallery).find(|x| x.name == name)
+            }
+        }
+        .ok_or_else(|| {
+            let name = source.split_once(':').map_or(source.as_str(), |(_, n)| n);
+            format!("no preset named {}", proctex::limits::quote(name))
+        })?;
         Ok(serde_json::json!({ "params": preset.params.to_json(), "m": m }).to_string())
     }
 
@@ -366,8 +381,9 @@ impl ProctexApp {
         let mut slider = self.pyramid.slider;
         let mut released = false;
         let mut rects = Vec::new();
-        let presets = &self.presets.list;
-        // Every texture a mixture can take, as (source, label).
+        let presets = &self.presets;
+        // Every texture a mixture can take, as (source, label): the shipped photos, the gallery's
+        // procedural textures (their analyses) and the user's presets.
         let sources: Vec<(String, String)> = SAMPLES
             .iter()
             .map(|n| {
@@ -378,6 +394,13 @@ impl ProctexApp {
             })
             .chain(
                 presets
+                    .gallery
+                    .iter()
+                    .map(|(g, _)| (format!("gallery:{}", g.name), format!("gallery {}", g.name))),
+            )
+            .chain(
+                presets
+                    .list
                     .iter()
                     .map(|p| (format!("preset:{}", p.name), format!("preset {}", p.name))),
             )
@@ -404,6 +427,7 @@ impl ProctexApp {
                     .width(width)
                     .show_ui(ui, |ui| {
                         ui.selectable_value(&mut choice, None, "none");
+                        ui.selectable_value(&mut choice, Some((CROP.into(), m)), "the crop");
                         for (source, label) in &sources {
                             let v = Some((source.clone(), m));
                             ui.selectable_value(&mut choice, v, label);
