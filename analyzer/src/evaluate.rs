@@ -306,6 +306,51 @@ pub fn fidelity_by(
     seeds: &[u32],
     observe: &mut dyn FnMut(SynthesisRun),
 ) -> Result<Fidelity> {
+    let mut make = |src: &Photo, seed: u32| -> Result<Made> {
+        let start = std::time::Instant::now();
+        match synthesiser {
+            Synthesiser::Model(choice, refinement) => {
+                let o = Options { seed, ..*opts };
+                let (analysis, ranking) =
+                    analyze_photo_model_progress(src, &o, choice, refinement, &|_, _| true)?;
+                let ms = start.elapsed().as_secs_f64() * 1000.0;
+                Ok((render_at_photo_size(&analysis, src), ranking, ms))
+            }
+            Synthesiser::Pyramid(raster) => {
+                let raster = RasterOptions {
+                    width: src.width,
+                    height: src.height,
+                    seed,
+                    ..raster
+                };
+                let syn = crate::heeger_bergen::synthesize(src, &raster)?;
+                Ok((syn, Vec::new(), start.elapsed().as_secs_f64() * 1000.0))
+            }
+        }
+    };
+    fidelity_core(photo, seeds, &mut make, observe)
+}
+
+/// The fidelity protocol with syntheses made by `synthesise(source patch, seed)` (of the
+/// patch's size): for experiments with models that are not the product's (the labs).
+pub fn fidelity_with(
+    photo: &Photo,
+    seeds: &[u32],
+    synthesise: &mut dyn FnMut(&Photo, u32) -> Result<Photo>,
+) -> Result<Fidelity> {
+    let mut make = |src: &Photo, seed: u32| Ok((synthesise(src, seed)?, Vec::new(), 0.0));
+    fidelity_core(photo, seeds, &mut make, &mut |_| {})
+}
+
+/// What a synthesis of the protocol returns: the texture, the ranking, the analysis' time (ms).
+type Made = (Photo, Vec<Suggestion>, f64);
+
+fn fidelity_core(
+    photo: &Photo,
+    seeds: &[u32],
+    make: &mut dyn FnMut(&Photo, u32) -> Result<Made>,
+    observe: &mut dyn FnMut(SynthesisRun),
+) -> Result<Fidelity> {
     let [tl, tr, bl, br] = quadrants(photo)?;
     let repeat = quadrants_repeat(photo)?;
     let pairs = [(tl, bl), (tr, br)];
@@ -317,29 +362,8 @@ pub fn fidelity_by(
         let d = distances(a, b);
         halves = halves.zip(d, |x, y| x + y / pairs.len() as f64);
         for &seed in seeds {
-            let o = Options { seed, ..*opts };
             for (di, (src, other)) in [(a, b), (b, a)].into_iter().enumerate() {
-                let start = std::time::Instant::now();
-                let (syn, ranking, analysis_ms) = match synthesiser {
-                    Synthesiser::Model(choice, refinement) => {
-                        let (analysis, ranking) =
-                            analyze_photo_model_progress(src, &o, choice, refinement, &|_, _| {
-                                true
-                            })?;
-                        let ms = start.elapsed().as_secs_f64() * 1000.0;
-                        (render_at_photo_size(&analysis, src), ranking, ms)
-                    }
-                    Synthesiser::Pyramid(raster) => {
-                        let raster = RasterOptions {
-                            width: src.width,
-                            height: src.height,
-                            seed,
-                            ..raster
-                        };
-                        let syn = crate::heeger_bergen::synthesize(src, &raster)?;
-                        (syn, Vec::new(), start.elapsed().as_secs_f64() * 1000.0)
-                    }
-                };
+                let (syn, ranking, analysis_ms) = make(src, seed)?;
                 let d = distances(&syn, other);
                 observe(SynthesisRun {
                     patch: 2 * pi + di,

@@ -1,0 +1,341 @@
+//! Where the noise model loses against its own ideal: a ladder of syntheses from Lagae's ideal
+//! design to the model as it renders, each judged by the fidelity protocol (quadrant pairs,
+//! seeds 1..S) on the stochastic photos of a manifest, so that each step's cost shows on its
+//! own.
+//!
+//! The rungs (every one: the model's decorrelated channels, independent Gaussian fields,
+//! rotated back about the model's mean):
+//! 1. `floor`: the random-phase floor (`evaluate::random_phase`: each channel's full 2D power
+//!    spectrum, exact histograms), for reference.
+//! 2. `octave boxes, exact`: Lagae's design with ideal bands: each channel's power averaged over
+//!    octave rings of radial frequency (one box band per octave, Lagae eq. 10), random phases,
+//!    rank-matched to the channel's exact values.
+//! 3. `octave boxes, knots`: the same fields through the model's histogram (its knots and
+//!    spline, `render::colour`) instead of the exact values: the cost of the knots alone.
+//! 4. `model bands, exact`: the model's own noise (its wavelet-noise bands and fitted weights,
+//!    `render::channel_noise`) rank-matched to the exact values: the cost of the band shapes
+//!    and weights alone.
+//! 5. `model bands scaled`: the model's noise, each channel scaled to zero mean and the
+//!    deviation its knots assume (`sigma`), through its knots: whether the knots' cost on the
+//!    model's noise is a mismatch of scale.
+//! 6. `model`: the model as it renders (its noise through its knots).
+//!
+//! ```text
+//! cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
+//!     ../shared/photos/dev/manifest.tsv [SEEDS]
+//! ```
+
+use proctex::analyze::{Options, analyze_photo};
+use proctex::devset::{Category, overall, parse_manifest};
+use proctex::evaluate::{Fidelity, fidelity_with, random_phase};
+use proctex::input::Photo;
+use proctex::render::{Prepared, channel_noise, colour, tile_for};
+use proctex::rng;
+use proctex::spectrum::{fft2_real, ifft2, spectrum_real};
+
+const RUNGS: [&str; 6] = [
+    "floor (full spectrum, exact)",
+    "octave boxes, exact histograms",
+    "octave boxes, the model's knots",
+    "the model's bands, exact histograms",
+    "the model's bands scaled to its sigma, its knots",
+    "the model (its bands, its knots)",
+];
+
+/// The model of a patch: its prepared block, and its decorrelated channels' exact values.
+struct Model {
+    prep: Prepared,
+    params: proctex::params::Params,
+    channels: [Vec<f32>; 3],
+}
+
+fn model_of(src: &Photo, seed: u32) -> Model {
+    let opts = Options {
+        seed,
+        ..Options::default()
+    };
+    let params = analyze_photo(src, &opts).expect("analysis").params;
+    let prep = Prepared::new(&params);
+    let channels = std::array::from_fn(|c| {
+        src.pixels
+            .iter()
+            .map(|p| {
+                (0..3)
+                    .map(|k| prep.basis[c][k] * (p[k] - prep.mean[k]))
+                    .sum::<f32>()
+            })
+            .collect()
+    });
+    Model {
+        prep,
+        params,
+        channels,
+    }
+}
+
+/// Channel `values` (any distribution) rank-matched to `target`'s exact values.
+fn rank_match(values: &[f32], target: &[f32]) -> Vec<f32> {
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    let mut sorted = target.to_vec();
+    sorted.sort_unstable_by(f32::total_cmp);
+    let mut out = vec![0.0; values.len()];
+    for (rank, &i) in order.iter().enumerate() {
+        out[i] = sorted[rank];
+    }
+    out
+}
+
+/// A Gaussian field with `chan`'s power averaged over octave rings (one box band per octave),
+/// random phases of `seed`, zero mean.
+fn octave_box_field(chan: &[f32], w: usize, h: usize, seed: u32, c: usize) -> Vec<f32> {
+    let spec = spectrum_real(chan, w, h, true);
+    let ring = |i: usize| {
+        let (kx, ky) = (i % w, i / w);
+        let fx = if kx <= w / 2 {
+            kx as f64
+        } else {
+            kx as f64 - w as f64
+        } / w as f64;
+        let fy = if ky <= h / 2 {
+            ky as f64
+        } else {
+            ky as f64 - h as f64
+        } / h as f64;
+        let r = (fx * fx + fy * fy).sqrt();
+        if r == 0.0 {
+            return None;
+        }
+        // Octave j holds radial frequencies in (2^-(j+1), 2^-j] cycles per pixel; the lowest
+        // octave takes everything below.
+        let lowest = (w.max(h) as f64).log2().floor() as usize;
+        Some(((-r.log2()).floor().max(0.0) as usize).min(lowest))
+    };
+    let rings: Vec<Option<usize>> = (0..w * h).map(ring).collect();
+    let count = rings.iter().flatten().max().map_or(0, |m| m + 1);
+    let (mut power, mut bins) = (vec![0.0f64; count], vec![0usize; count]);
+    for (s, r) in spec.iter().zip(&rings) {
+        if let Some(j) = r {
+            power[*j] += s.norm_sqr() as f64;
+            bins[*j] += 1;
+        }
+    }
+    let noise: Vec<f32> = (0..w * h)
+        .map(|i| rng::gaussian(seed, 0x6f63_7462 + c as u32, i as u32) as f32)
+        .collect();
+    let phases = fft2_real(&noise, w, h);
+    let shaped: Vec<_> = phases
+        .iter()
+        .zip(&rings)
+        .map(|(ph, r)| match r {
+            Some(j) => {
+                let amplitude = (power[*j] / bins[*j].max(1) as f64).sqrt() as f32;
+                let m = ph.norm();
+                if m > 0.0 { ph * (amplitude / m) } else { *ph }
+            }
+            None => ph * 0.0,
+        })
+        .collect();
+    ifft2(shaped, w, h).iter().map(|v| v.re).collect()
+}
+
+/// Decorrelated channel values back to RGB about the model's mean.
+fn to_rgb(m: &Model, v: &[Vec<f32>; 3], w: u32, h: u32) -> Photo {
+    let p = &m.prep;
+    Photo {
+        width: w,
+        height: h,
+        pixels: (0..v[0].len())
+            .map(|i| {
+                std::array::from_fn(|k| {
+                    let rgb = p.mean[k] + (0..3).map(|c| v[c][i] * p.basis[c][k]).sum::<f32>();
+                    rgb.clamp(0.0, 1.0)
+                })
+            })
+            .collect(),
+    }
+}
+
+/// The model's Gaussian noise per channel over the patch's pixels (one world unit a pixel, as
+/// the protocol renders).
+fn model_noise(m: &Model, w: u32, h: u32) -> [Vec<f32>; 3] {
+    let tile = tile_for(&m.params);
+    let log2_fp = m.prep.inv_scale.log2();
+    let mut out: [Vec<f32>; 3] = std::array::from_fn(|_| Vec::with_capacity((w * h) as usize));
+    for y in 0..h {
+        for x in 0..w {
+            let u = m.prep.texel([x as f32 + 0.5, y as f32 + 0.5, 0.0]);
+            for (c, o) in out.iter_mut().enumerate() {
+                o.push(channel_noise(&m.prep, &tile, c, u, log2_fp));
+            }
+        }
+    }
+    out
+}
+
+fn synthesise(rung: usize, src: &Photo, seed: u32) -> Photo {
+    if rung == 0 {
+        return random_phase(src, seed);
+    }
+    let (w, h) = (src.width, src.height);
+    let m = model_of(src, seed);
+    let (wu, hu) = (w as usize, h as usize);
+    match rung {
+        1 | 2 => {
+            let fields: [Vec<f32>; 3] =
+                std::array::from_fn(|c| octave_box_field(&m.channels[c], wu, hu, seed, c));
+            if rung == 1 {
+                let v = std::array::from_fn(|c| rank_match(&fields[c], &m.channels[c]));
+                return to_rgb(&m, &v, w, h);
+            }
+            // The model's histogram: each field scaled to the deviation its knots expect.
+            rgb_through_model(&m, &scaled_to_sigma(&m, &fields), w, h)
+        }
+        3 => {
+            let g = model_noise(&m, w, h);
+            let v = std::array::from_fn(|c| rank_match(&g[c], &m.channels[c]));
+            to_rgb(&m, &v, w, h)
+        }
+        4 => rgb_through_model(&m, &scaled_to_sigma(&m, &model_noise(&m, w, h)), w, h),
+        _ => rgb_through_model(&m, &model_noise(&m, w, h), w, h),
+    }
+}
+
+/// Each field scaled to the deviation the model's knots expect (its sigma).
+fn scaled_to_sigma(m: &Model, fields: &[Vec<f32>; 3]) -> [Vec<f32>; 3] {
+    std::array::from_fn(|c| {
+        let f = &fields[c];
+        let n = f.len() as f64;
+        let mean = f.iter().map(|&v| v as f64).sum::<f64>() / n;
+        let sd = (f.iter().map(|&v| (v as f64 - mean).powi(2)).sum::<f64>() / n)
+            .sqrt()
+            .max(1e-12);
+        // PROCTEX_LAB_SCALE=mean: only the mean removed; =sd: only the deviation set.
+        let (shift, scale) = match std::env::var("PROCTEX_LAB_SCALE").as_deref() {
+            Ok("mean") => (mean, 1.0),
+            Ok("sd") => (0.0, m.prep.sigma[c] as f64 / sd),
+            _ => (mean, m.prep.sigma[c] as f64 / sd),
+        };
+        f.iter()
+            .map(|&v| ((v as f64 - shift) * scale) as f32)
+            .collect()
+    })
+}
+
+/// Channel noise values through the model's colour (its histogram knots, contrast, basis).
+fn rgb_through_model(m: &Model, g: &[Vec<f32>; 3], w: u32, h: u32) -> Photo {
+    Photo {
+        width: w,
+        height: h,
+        pixels: (0..g[0].len())
+            .map(|i| {
+                colour(&m.prep, [g[0][i], g[1][i], g[2][i]], m.prep.mean).map(|v| v.clamp(0.0, 1.0))
+            })
+            .collect(),
+    }
+}
+
+fn mean_se(v: &[f64]) -> (f64, f64) {
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+    (mean, (var / n).sqrt())
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let manifest = args.first().expect("MANIFEST.tsv");
+    let seeds: Vec<u32> = (1..=args.get(1).map_or(2, |s| s.parse().unwrap())).collect();
+    let dir = std::path::Path::new(manifest).parent().unwrap();
+    let entries = parse_manifest(&std::fs::read_to_string(manifest).unwrap()).unwrap();
+    let photos: Vec<_> = entries
+        .iter()
+        .filter(|e| e.category == Category::Stochastic)
+        .collect();
+    // Per rung: per photo (spectrum, colour, structure, overall); and the differences from the
+    // previous rung per photo.
+    let mut table: Vec<Vec<[f64; 4]>> = vec![Vec::new(); RUNGS.len()];
+    for e in &photos {
+        let photo = Photo::decode(&std::fs::read(dir.join(&e.file)).unwrap()).unwrap();
+        let mut line = format!("{:<36}", e.file);
+        for (rung, rows) in table.iter_mut().enumerate() {
+            let f: Fidelity = fidelity_with(&photo, &seeds, &mut |src, seed| {
+                Ok(synthesise(rung, src, seed))
+            })
+            .unwrap();
+            let r = [
+                f.spectrum_ratio,
+                f.colour_ratio,
+                f.structure_ratio,
+                overall(&f),
+            ];
+            line += &format!(" {:.2}", r[3]);
+            rows.push(r);
+        }
+        eprintln!("{line}");
+    }
+    // Why the knots cost more on the model's noise than on ideal fields: the deviation of the
+    // model's rendered noise against the one its knots assume (sigma), and its kurtosis (3 for a
+    // Gaussian), per channel with variation.
+    let mut sd_ratio: [Vec<f64>; 3] = Default::default();
+    let mut kurtosis: [Vec<f64>; 3] = Default::default();
+    for e in &photos {
+        let photo = Photo::decode(&std::fs::read(dir.join(&e.file)).unwrap()).unwrap();
+        let m = model_of(&photo, 1);
+        let g = model_noise(&m, photo.width, photo.height);
+        for c in 0..3 {
+            if m.prep.sigma[c] <= 1e-6 {
+                continue;
+            }
+            let n = g[c].len() as f64;
+            let mean = g[c].iter().map(|&v| v as f64).sum::<f64>() / n;
+            let moment = |k: i32| g[c].iter().map(|&v| (v as f64 - mean).powi(k)).sum::<f64>() / n;
+            let var = moment(2);
+            sd_ratio[c].push(var.sqrt() / m.prep.sigma[c] as f64);
+            kurtosis[c].push(moment(4) / (var * var).max(1e-30));
+        }
+    }
+    for c in 0..3 {
+        let (m, s) = mean_se(&sd_ratio[c]);
+        let (k, ks) = mean_se(&kurtosis[c]);
+        let (lo, hi) = sd_ratio[c]
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+        println!(
+            "channel {c} ({} photos with variation): the model's noise deviation / its knots' sigma = {m:.3} ± {s:.3} (range {lo:.3}–{hi:.3}); kurtosis {k:.2} ± {ks:.2}",
+            sd_ratio[c].len()
+        );
+    }
+    println!(
+        "{} stochastic photos of {manifest}, seeds {seeds:?}: fidelity ratios, mean ± standard error over photos",
+        photos.len()
+    );
+    println!("| rung | spectrum | colour | structure | overall | overall − previous rung |");
+    println!("| --- | --- | --- | --- | --- | --- |");
+    for (rung, rows) in table.iter().enumerate() {
+        let col = |k: usize| mean_se(&rows.iter().map(|r| r[k]).collect::<Vec<_>>());
+        let cell = |k: usize| {
+            let (m, s) = col(k);
+            format!("{m:.2} ± {s:.2}")
+        };
+        let step = if rung == 0 {
+            "—".to_string()
+        } else {
+            let d: Vec<f64> = rows
+                .iter()
+                .zip(&table[rung - 1])
+                .map(|(a, b)| a[3] - b[3])
+                .collect();
+            let (m, s) = mean_se(&d);
+            format!("{m:+.3} ± {s:.3}")
+        };
+        println!(
+            "| {} | {} | {} | {} | {} | {step} |",
+            RUNGS[rung],
+            cell(0),
+            cell(1),
+            cell(2),
+            cell(3)
+        );
+    }
+}
