@@ -18,7 +18,10 @@
 //! 5. `model bands scaled`: the model's noise, each channel scaled to zero mean and the
 //!    deviation its knots assume (`sigma`), through its knots: whether the knots' cost on the
 //!    model's noise is a mismatch of scale.
-//! 6. `model`: the model as it renders (its noise through its knots).
+//! 6. `fine bands normalised`: the model with each of its three finest bands divided by its own
+//!    deviation over the patch's pixels (at one texel per pixel a fine band is sampled at a few
+//!    fixed sub-texel phases), through its knots.
+//! 7. `model`: the model as it renders (its noise through its knots).
 //!
 //! ```text
 //! cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
@@ -33,12 +36,13 @@ use proctex::render::{Prepared, channel_noise, colour, tile_for};
 use proctex::rng;
 use proctex::spectrum::{fft2_real, ifft2, spectrum_real};
 
-const RUNGS: [&str; 6] = [
+const RUNGS: [&str; 7] = [
     "floor (full spectrum, exact)",
     "octave boxes, exact histograms",
     "octave boxes, the model's knots",
     "the model's bands, exact histograms",
     "the model's bands scaled to its sigma, its knots",
+    "the model, its three finest bands at unit deviation on the pixel grid",
     "the model (its bands, its knots)",
 ];
 
@@ -197,8 +201,67 @@ fn synthesise(rung: usize, src: &Photo, seed: u32) -> Photo {
             to_rgb(&m, &v, w, h)
         }
         4 => rgb_through_model(&m, &scaled_to_sigma(&m, &model_noise(&m, w, h)), w, h),
+        5 => rgb_through_model(&m, &fine_bands_normalised(&m, w, h), w, h),
         _ => rgb_through_model(&m, &model_noise(&m, w, h), w, h),
     }
+}
+
+/// The deviation of channel `c`'s noise over 2²⁰ points spread over a 2¹⁴-texel square (every
+/// band's period many times over), not one patch.
+fn wide_deviation(m: &Model, c: usize) -> f64 {
+    let tile = tile_for(&m.params);
+    let (mut sum, mut sum2, n) = (0.0f64, 0.0f64, 1u32 << 20);
+    for i in 0..n {
+        let u = [
+            rng::uniform(7, 0x7769_6465, 2 * i) as f32 * 16384.0,
+            rng::uniform(7, 0x7769_6465, 2 * i + 1) as f32 * 16384.0,
+            0.0,
+        ];
+        let v = channel_noise(&m.prep, &tile, c, u, -1.0) as f64;
+        sum += v;
+        sum2 += v * v;
+    }
+    let mean = sum / n as f64;
+    (sum2 / n as f64 - mean * mean).sqrt()
+}
+
+/// The model's noise with each of its three finest bands divided by its own deviation over the
+/// patch's pixels: at one texel per pixel a fine band is sampled at a few fixed sub-texel
+/// phases, where the B-spline's variance is not its average (which the tile is normalised to).
+fn fine_bands_normalised(m: &Model, w: u32, h: u32) -> [Vec<f32>; 3] {
+    let bands = m.prep.bands as usize;
+    let band = |c: usize, j: usize| {
+        let mut one = Model {
+            prep: m.prep.clone(),
+            params: m.params.clone(),
+            channels: Default::default(),
+        };
+        one.prep.weights[c] = [0.0; proctex::params::MAX_BANDS];
+        one.prep.weights[c][j] = 1.0;
+        model_noise(&one, w, h)[c].clone()
+    };
+    std::array::from_fn(|c| {
+        let mut sum = vec![0.0f32; (w * h) as usize];
+        for j in 0..bands {
+            let wj = m.prep.weights[c][j];
+            if wj == 0.0 {
+                continue;
+            }
+            let v = band(c, j);
+            let k = if j < 3 {
+                let n = v.len() as f64;
+                let mean = v.iter().map(|&x| x as f64).sum::<f64>() / n;
+                let var = v.iter().map(|&x| (x as f64 - mean).powi(2)).sum::<f64>() / n;
+                (1.0 / var.sqrt().max(1e-9)) as f32
+            } else {
+                1.0
+            };
+            for (s, x) in sum.iter_mut().zip(&v) {
+                *s += wj * k * x;
+            }
+        }
+        sum
+    })
 }
 
 /// Each field scaled to the deviation the model's knots expect (its sigma).
@@ -279,9 +342,11 @@ fn main() {
     // Gaussian), per channel with variation.
     let mut sd_ratio: [Vec<f64>; 3] = Default::default();
     let mut kurtosis: [Vec<f64>; 3] = Default::default();
+    let mut wide_ratio: [Vec<f64>; 3] = Default::default();
     for e in &photos {
         let photo = Photo::decode(&std::fs::read(dir.join(&e.file)).unwrap()).unwrap();
-        let m = model_of(&photo, 1);
+        let diag_seed = std::env::var("PROCTEX_LAB_SEED").map_or(1, |s| s.parse().unwrap());
+        let m = model_of(&photo, diag_seed);
         let g = model_noise(&m, photo.width, photo.height);
         for c in 0..3 {
             if m.prep.sigma[c] <= 1e-6 {
@@ -292,6 +357,9 @@ fn main() {
             let moment = |k: i32| g[c].iter().map(|&v| (v as f64 - mean).powi(k)).sum::<f64>() / n;
             let var = moment(2);
             sd_ratio[c].push(var.sqrt() / m.prep.sigma[c] as f64);
+            if std::env::var("PROCTEX_LAB_WIDE").is_ok() {
+                wide_ratio[c].push(wide_deviation(&m, c) / m.prep.sigma[c] as f64);
+            }
             kurtosis[c].push(moment(4) / (var * var).max(1e-30));
         }
     }
@@ -301,8 +369,13 @@ fn main() {
         let (lo, hi) = sd_ratio[c]
             .iter()
             .fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+        let (wm, ws) = if wide_ratio[c].is_empty() {
+            (f64::NAN, f64::NAN)
+        } else {
+            mean_se(&wide_ratio[c])
+        };
         println!(
-            "channel {c} ({} photos with variation): the model's noise deviation / its knots' sigma = {m:.3} ± {s:.3} (range {lo:.3}–{hi:.3}); kurtosis {k:.2} ± {ks:.2}",
+            "channel {c} ({} photos with variation): the model's noise deviation / its knots' sigma = {m:.3} ± {s:.3} (range {lo:.3}–{hi:.3}); kurtosis {k:.2} ± {ks:.2}; over 2^14 texels {wm:.3} ± {ws:.3}",
             sd_ratio[c].len()
         );
     }
