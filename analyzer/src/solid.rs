@@ -383,22 +383,9 @@ pub fn render_solid_volume(
     height: u32,
 ) -> Image {
     let v = SolidView::new(orbit, [width as f32, height as f32], [0.0, 0.0]);
-    let mut pixels = Vec::with_capacity(width as usize * height as usize);
-    for y in 0..height {
-        for x in 0..width {
-            pixels.push(volume_pixel(
-                vol,
-                voxels_per_unit,
-                &v,
-                [x as f32 + 0.5, y as f32 + 0.5],
-            ));
-        }
-    }
-    Image {
-        width,
-        height,
-        pixels,
-    }
+    render_view(width, height, |pix| {
+        volume_pixel(vol, voxels_per_unit, &v, pix)
+    })
 }
 
 /// Renders the solid view of `params` (rendered as a solid texture whatever `params.solid`
@@ -409,15 +396,15 @@ pub fn render_solid(params: &Params, orbit: &Orbit, width: u32, height: u32) -> 
     let prep = Prepared::new(&solid);
     let tile = tile_for(&solid);
     let v = SolidView::new(orbit, [width as f32, height as f32], [0.0, 0.0]);
+    render_view(width, height, |pix| solid_pixel(&prep, &tile, &v, pix))
+}
+
+/// A `width × height` image of `pixel(pixel centre)`, row by row.
+fn render_view(width: u32, height: u32, pixel: impl Fn([f32; 2]) -> [f32; 3]) -> Image {
     let mut pixels = Vec::with_capacity(width as usize * height as usize);
     for y in 0..height {
         for x in 0..width {
-            pixels.push(solid_pixel(
-                &prep,
-                &tile,
-                &v,
-                [x as f32 + 0.5, y as f32 + 0.5],
-            ));
+            pixels.push(pixel([x as f32 + 0.5, y as f32 + 0.5]));
         }
     }
     Image {

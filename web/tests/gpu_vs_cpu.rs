@@ -15,7 +15,7 @@ use proctex::solid::{Orbit, Shape, SolidView, render_solid};
 use proctex_web::renderer::{Pass, TextureRenderer, clear_pass, full_screen_pipeline};
 
 mod common;
-use common::{Gpu, gpu, read_rgb8, read_texture, rgba8_target};
+use common::{Gpu, gpu, read_rgb8, read_texture, rgb_difference, rgba8_target};
 
 /// Renders `params` with the GPU pipeline into a `w × h` rgba8unorm texture; returns RGB8.
 /// What a GPU render draws.
@@ -270,14 +270,8 @@ fn solid_view_and_flat_baseline_match_cpu() {
         let (w, h) = (160, 120);
         let cpu = render_solid(&rock, &orbit, w, h).to_rgb8();
         let gpu_rgb = render_gpu(&gpu, &rock, w, h, &What::Solid(orbit));
-        let diffs: Vec<u8> = cpu
-            .iter()
-            .zip(&gpu_rgb)
-            .map(|(a, b)| a.abs_diff(*b))
-            .collect();
-        let mae = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
-        // Silhouette pixels may fall either side of the edge in f32; count the big ones.
-        let big = diffs.iter().filter(|&&d| d > 3).count() as f64 / diffs.len() as f64;
+        let (mae, big) = rgb_difference(&cpu, &gpu_rgb);
+        // Silhouette pixels may fall either side of the edge in f32: `big` counts them.
         println!(
             "rock, solid {what:<30} {w}×{h} on {}: mean |GPU − CPU| = {mae:.4}/255, {:.3} % of values > 3/255",
             gpu.adapter_name,

@@ -15,7 +15,7 @@ use proctex_web::renderer::clear_pass;
 use proctex_web::volume_renderer::{VolumeRenderer, VolumeSource};
 
 mod common;
-use common::{Gpu, gpu, read_rgb8, rgba8_target};
+use common::{Gpu, gpu, read_rgb8, rgb_difference, rgba8_target};
 
 fn render_gpu(gpu: &Gpu, src: &VolumeSource, orbit: &Orbit, w: u32, h: u32) -> Vec<u8> {
     let target = rgba8_target(gpu, w, h);
@@ -75,13 +75,7 @@ fn the_volume_on_the_sphere_and_cube_matches_cpu() {
         let (w, h) = (160, 120);
         let cpu = render_solid_volume(&src.voxels, src.voxels_per_unit, &orbit, w, h).to_rgb8();
         let gpu_rgb = render_gpu(&gpu, &src, &orbit, w, h);
-        let diffs: Vec<u8> = cpu
-            .iter()
-            .zip(&gpu_rgb)
-            .map(|(a, b)| a.abs_diff(*b))
-            .collect();
-        let mae = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
-        let big = diffs.iter().filter(|&&d| d > 3).count() as f64 / diffs.len() as f64;
+        let (mae, big) = rgb_difference(&cpu, &gpu_rgb);
         println!(
             "gravel volume, {what:<6} {w}×{h} on {}: mean |GPU − CPU| = {mae:.4}/255, {:.3} % of values > 3/255",
             gpu.adapter_name,

@@ -383,28 +383,29 @@ impl ProctexApp {
         let mut rects = Vec::new();
         let presets = &self.presets;
         // Every texture a mixture can take, as (source, label): the shipped photos, the gallery's
-        // procedural textures (their analyses) and the user's presets.
-        let sources: Vec<(String, String)> = SAMPLES
-            .iter()
-            .map(|n| {
-                (
-                    format!("sample:{n}"),
-                    n.trim_end_matches(".png").to_string(),
-                )
-            })
-            .chain(
-                presets
-                    .gallery
+        // procedural textures (their analyses) and the user's presets. Listed only while a
+        // combo box is open, not on every frame.
+        let sources =
+            || -> Vec<(String, String)> {
+                SAMPLES
                     .iter()
-                    .map(|(g, _)| (format!("gallery:{}", g.name), format!("gallery {}", g.name))),
-            )
-            .chain(
-                presets
-                    .list
-                    .iter()
-                    .map(|p| (format!("preset:{}", p.name), format!("preset {}", p.name))),
-            )
-            .collect();
+                    .map(|n| {
+                        (
+                            format!("sample:{n}"),
+                            n.trim_end_matches(".png").to_string(),
+                        )
+                    })
+                    .chain(presets.gallery.iter().map(|(g, _)| {
+                        (format!("gallery:{}", g.name), format!("gallery {}", g.name))
+                    }))
+                    .chain(
+                        presets
+                            .list
+                            .iter()
+                            .map(|p| (format!("preset:{}", p.name), format!("preset {}", p.name))),
+                    )
+                    .collect()
+            };
         ui.scope_builder(egui::UiBuilder::new().max_rect(at), |ui| {
             ui.vertical(|ui| {
                 let r = egui::ComboBox::from_id_salt("pyramid.a")
@@ -412,8 +413,8 @@ impl ProctexApp {
                     .width(width)
                     .show_ui(ui, |ui| {
                         ui.selectable_value(&mut a, None, "the crop");
-                        for (source, label) in &sources {
-                            ui.selectable_value(&mut a, Some(source.clone()), label);
+                        for (source, label) in sources() {
+                            ui.selectable_value(&mut a, Some(source), label);
                         }
                     })
                     .response
@@ -428,9 +429,8 @@ impl ProctexApp {
                     .show_ui(ui, |ui| {
                         ui.selectable_value(&mut choice, None, "none");
                         ui.selectable_value(&mut choice, Some((CROP.into(), m)), "the crop");
-                        for (source, label) in &sources {
-                            let v = Some((source.clone(), m));
-                            ui.selectable_value(&mut choice, v, label);
+                        for (source, label) in sources() {
+                            ui.selectable_value(&mut choice, Some((source, m)), label);
                         }
                     })
                     .response

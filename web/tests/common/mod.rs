@@ -110,3 +110,12 @@ pub fn rgba8_target(gpu: &Gpu, w: u32, h: u32) -> wgpu::Texture {
         view_formats: &[],
     })
 }
+
+/// The mean absolute difference of two 8-bit images' values (/255), and the fraction of values
+/// that differ by more than 3/255.
+pub fn rgb_difference(a: &[u8], b: &[u8]) -> (f64, f64) {
+    let diffs: Vec<u8> = a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).collect();
+    let mae = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
+    let big = diffs.iter().filter(|&&d| d > 3).count() as f64 / diffs.len() as f64;
+    (mae, big)
+}
