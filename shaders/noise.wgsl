@@ -1,6 +1,6 @@
 // Wavelet noise evaluation and band clamping (noise3 reads the 3D tile through tile3_side and
 // tile3_texel: tile3.wgsl or tile3_atlas.wgsl). Twins: analyzer/src/noise.rs
-// (bspline_weights, noise2, wrap_period, whole_period, noise2_periodic, noise3, band_fade;
+// (bspline_weights, weight_lags, phase_variance2/3, noise2, wrap_period, whole_period, noise2_periodic, noise3, band_fade;
 // wrap_coord and wrap_index are private helpers there). Same operation order, f32.
 
 struct BWeights {
@@ -14,6 +14,36 @@ fn bspline_weights(p: f32) -> BWeights {
     let w0 = 0.5 * t * t;
     let w2 = 0.5 * (1.0 - t) * (1.0 - t);
     return BWeights(i32(mid), vec3<f32>(w0, 1.0 - w0 - w2, w2));
+}
+
+// The tile's expected coefficient autocorrelation at lags 0 and ±1, by how many axes the lag
+// moves along (twins of TILE2_LAGS / TILE3_LAGS in analyzer/src/noise.rs).
+const TILE2_LAGS = vec3<f32>(5.5791, -1.1537, -0.7334);
+const TILE3_LAGS = vec4<f32>(8.964, -0.7905, -0.4997, -0.3143);
+
+// The B-spline weights' autocorrelation at lags 0 and ±1.
+fn weight_lags(w: vec3<f32>) -> vec2<f32> {
+    return vec2<f32>(w[0] * w[0] + w[1] * w[1] + w[2] * w[2], w[0] * w[1] + w[1] * w[2]);
+}
+
+// A 2D band's variance at the sub-texel phase of weights wx, wy (divided out: every phase has
+// unit variance, not only their average).
+fn phase_variance2(wx: vec3<f32>, wy: vec3<f32>) -> f32 {
+    let cx = weight_lags(wx);
+    let cy = weight_lags(wy);
+    return TILE2_LAGS[0] * cx[0] * cy[0]
+        + 2.0 * TILE2_LAGS[1] * (cx[0] * cy[1] + cx[1] * cy[0])
+        + 4.0 * TILE2_LAGS[2] * cx[1] * cy[1];
+}
+
+fn phase_variance3(wx: vec3<f32>, wy: vec3<f32>, wz: vec3<f32>) -> f32 {
+    let cx = weight_lags(wx);
+    let cy = weight_lags(wy);
+    let cz = weight_lags(wz);
+    return TILE3_LAGS[0] * cx[0] * cy[0] * cz[0]
+        + 2.0 * TILE3_LAGS[1] * (cx[1] * cy[0] * cz[0] + cx[0] * cy[1] * cz[0] + cx[0] * cy[0] * cz[1])
+        + 4.0 * TILE3_LAGS[2] * (cx[1] * cy[1] * cz[0] + cx[1] * cy[0] * cz[1] + cx[0] * cy[1] * cz[1])
+        + 8.0 * TILE3_LAGS[3] * cx[1] * cy[1] * cz[1];
 }
 
 fn wrap_coord(p: f32, n: f32) -> f32 {
@@ -44,7 +74,7 @@ fn noise2(p: vec2<f32>) -> f32 {
         }
         sum += by.w[dy] * line;
     }
-    return sum;
+    return sum / sqrt(phase_variance2(bx.w, by.w));
 }
 
 // i mod m for any m >= 1 (a wrapped period need not be a power of two).
@@ -84,7 +114,7 @@ fn noise2_periodic(p: vec2<f32>, period: vec2<f32>) -> f32 {
         }
         sum += by.w[dy] * line;
     }
-    return sum;
+    return sum / sqrt(phase_variance2(bx.w, by.w));
 }
 
 fn noise3(p: vec3<f32>) -> f32 {
@@ -112,7 +142,7 @@ fn noise3(p: vec3<f32>) -> f32 {
         }
         sum += bz.w[dz] * plane;
     }
-    return sum;
+    return sum / sqrt(phase_variance3(bx.w, by.w, bz.w));
 }
 
 fn band_fade(band: u32, log2_footprint: f32) -> f32 {

@@ -21,10 +21,9 @@
 //! 6. `fine bands normalised`: the model with each of its three finest bands divided by its own
 //!    deviation over the patch's pixels (at one texel per pixel a fine band is sampled at a few
 //!    fixed sub-texel phases), through its knots.
-//! 7. `phase normalised`: the model with every band's value divided by the deviation the tile has
-//!    at that sub-texel phase (from the coefficients' autocorrelation and the B-spline weights),
-//!    through its knots: the fix the rungs above point to, as it would render.
-//! 8. `model`: the model as it renders (its noise through its knots).
+//! 7. `model`: the model as it renders (its noise through its knots). Its bands are divided by
+//!    the deviation the tile has at each sub-texel phase (`noise::phase_variance2`), the fix
+//!    the rungs above pointed to; before that fix this ladder had it as a rung of its own.
 //!
 //! ```text
 //! cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
@@ -39,14 +38,13 @@ use proctex::render::{Prepared, channel_noise, colour, tile_for};
 use proctex::rng;
 use proctex::spectrum::{fft2_real, ifft2, spectrum_real};
 
-const RUNGS: [&str; 8] = [
+const RUNGS: [&str; 7] = [
     "floor (full spectrum, exact)",
     "octave boxes, exact histograms",
     "octave boxes, the model's knots",
     "the model's bands, exact histograms",
     "the model's bands scaled to its sigma, its knots",
     "the model, its three finest bands at unit deviation on the pixel grid",
-    "the model, every band divided by its phase's deviation",
     "the model (its bands, its knots)",
 ];
 
@@ -206,7 +204,6 @@ fn synthesise(rung: usize, src: &Photo, seed: u32) -> Photo {
         }
         4 => rgb_through_model(&m, &scaled_to_sigma(&m, &model_noise(&m, w, h)), w, h),
         5 => rgb_through_model(&m, &fine_bands_normalised(&m, w, h), w, h),
-        6 => rgb_through_model(&m, &phase_normalised_noise(&m, w, h), w, h),
         _ => rgb_through_model(&m, &model_noise(&m, w, h), w, h),
     }
 }
@@ -267,81 +264,6 @@ fn fine_bands_normalised(m: &Model, w: u32, h: u32) -> [Vec<f32>; 3] {
         }
         sum
     })
-}
-
-/// The autocorrelation of a 2D tile's coefficients over lags −2…2 (`[dy + 2][dx + 2]`).
-fn coefficient_autocorrelation(tile: &proctex::noise::Tile) -> [[f64; 5]; 5] {
-    let n = tile.n as i64;
-    let at = |x: i64, y: i64| tile.data[(x.rem_euclid(n) + n * y.rem_euclid(n)) as usize] as f64;
-    std::array::from_fn(|b| {
-        std::array::from_fn(|a| {
-            let (dx, dy) = (a as i64 - 2, b as i64 - 2);
-            let mut s = 0.0;
-            for y in 0..n {
-                for x in 0..n {
-                    s += at(x, y) * at(x + dx, y + dy);
-                }
-            }
-            s / (n * n) as f64
-        })
-    })
-}
-
-/// The B-spline weights' autocorrelation at lags −2…2.
-fn weight_lags(w: [f32; 3]) -> [f64; 5] {
-    std::array::from_fn(|k| {
-        let d = k as i64 - 2;
-        (0..3i64)
-            .filter(|i| (0..3).contains(&(i + d)))
-            .map(|i| w[i as usize] as f64 * w[(i + d) as usize] as f64)
-            .sum()
-    })
-}
-
-/// The model's noise with every band's value divided by the deviation the tile has at that
-/// sub-texel phase (√V, V = Σ R(dx, dy) Cx(dx) Cy(dy)): each band at unit variance at every
-/// phase, not only on average (2D models only; a solid one is left as it is).
-fn phase_normalised_noise(m: &Model, w: u32, h: u32) -> [Vec<f32>; 3] {
-    use proctex::noise::{bspline_weights, noise2};
-    if m.params.solid {
-        return model_noise(m, w, h);
-    }
-    let tile = tile_for(&m.params);
-    let r = coefficient_autocorrelation(&tile);
-    let nf = tile.n as f32;
-    let log2_fp = m.prep.inv_scale.log2();
-    let mut out: [Vec<f32>; 3] = std::array::from_fn(|_| Vec::with_capacity((w * h) as usize));
-    for y in 0..h {
-        for x in 0..w {
-            let u = m.prep.texel([x as f32 + 0.5, y as f32 + 0.5, 0.0]);
-            for (c, o) in out.iter_mut().enumerate() {
-                let mut sum = 0.0f32;
-                for j in 0..m.prep.bands as usize {
-                    let wj = m.prep.weights[c][j] * proctex::noise::band_fade(j as u32, log2_fp);
-                    if wj == 0.0 {
-                        continue;
-                    }
-                    let f = 1.0 / (1u32 << j) as f32;
-                    let off = m.prep.offsets[c][j];
-                    let q = [u[0] * f + off[0], u[1] * f + off[1]];
-                    let wrap = |p: f32| p - nf * (p / nf).floor();
-                    let (cx, cy) = (
-                        weight_lags(bspline_weights(wrap(q[0])).1),
-                        weight_lags(bspline_weights(wrap(q[1])).1),
-                    );
-                    let mut v = 0.0f64;
-                    for (b, row) in r.iter().enumerate() {
-                        for (a, rab) in row.iter().enumerate() {
-                            v += rab * cx[a] * cy[b];
-                        }
-                    }
-                    sum += wj * noise2(&tile.data, tile.n, q) / (v.max(1e-6).sqrt() as f32);
-                }
-                o.push(sum);
-            }
-        }
-    }
-    out
 }
 
 /// Each field scaled to the deviation the model's knots expect (its sigma).

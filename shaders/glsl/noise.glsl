@@ -16,6 +16,36 @@ BWeights bspline_weights(float p) {
     return BWeights(int(mid), vec3(w0, 1.0 - w0 - w2, w2));
 }
 
+// The tile's expected coefficient autocorrelation at lags 0 and ±1, by how many axes the lag
+// moves along (twins of TILE2_LAGS / TILE3_LAGS in analyzer/src/noise.rs).
+const vec3 TILE2_LAGS = vec3(5.5791, -1.1537, -0.7334);
+const vec4 TILE3_LAGS = vec4(8.964, -0.7905, -0.4997, -0.3143);
+
+// The B-spline weights' autocorrelation at lags 0 and ±1.
+vec2 weight_lags(vec3 w) {
+    return vec2(w[0] * w[0] + w[1] * w[1] + w[2] * w[2], w[0] * w[1] + w[1] * w[2]);
+}
+
+// A 2D band's variance at the sub-texel phase of weights wx, wy (divided out: every phase has
+// unit variance, not only their average).
+float phase_variance2(vec3 wx, vec3 wy) {
+    vec2 cx = weight_lags(wx);
+    vec2 cy = weight_lags(wy);
+    return TILE2_LAGS[0] * cx[0] * cy[0]
+        + 2.0 * TILE2_LAGS[1] * (cx[0] * cy[1] + cx[1] * cy[0])
+        + 4.0 * TILE2_LAGS[2] * cx[1] * cy[1];
+}
+
+float phase_variance3(vec3 wx, vec3 wy, vec3 wz) {
+    vec2 cx = weight_lags(wx);
+    vec2 cy = weight_lags(wy);
+    vec2 cz = weight_lags(wz);
+    return TILE3_LAGS[0] * cx[0] * cy[0] * cz[0]
+        + 2.0 * TILE3_LAGS[1] * (cx[1] * cy[0] * cz[0] + cx[0] * cy[1] * cz[0] + cx[0] * cy[0] * cz[1])
+        + 4.0 * TILE3_LAGS[2] * (cx[1] * cy[1] * cz[0] + cx[1] * cy[0] * cz[1] + cx[0] * cy[1] * cz[1])
+        + 8.0 * TILE3_LAGS[3] * cx[1] * cy[1] * cz[1];
+}
+
 float wrap_coord(float p, float n) {
     return p - n * floor(p / n);
 }
@@ -66,7 +96,7 @@ float wavelet_noise3(vec3 p) {
         }
         sum += bz.w[dz] * plane;
     }
-    return sum;
+    return sum / sqrt(phase_variance3(bx.w, by.w, bz.w));
 }
 #else
 uniform highp sampler2D proctex_tile2;
@@ -89,7 +119,7 @@ float wavelet_noise2(vec2 p) {
         }
         sum += by.w[dy] * line;
     }
-    return sum;
+    return sum / sqrt(phase_variance2(bx.w, by.w));
 }
 
 // One 2D band with its coefficient indices wrapped at min(period, n) per axis (seamless tiles).
@@ -113,7 +143,7 @@ float noise2_periodic(vec2 p, vec2 period) {
         }
         sum += by.w[dy] * line;
     }
-    return sum;
+    return sum / sqrt(phase_variance2(bx.w, by.w));
 }
 #endif
 
