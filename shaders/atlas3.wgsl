@@ -1,5 +1,5 @@
 // A volume stored as a 2D atlas of its z slices (exported solid textures: every host can render
-// into and read a 2D r32float texture; rendering into a 3D texture takes one pass per slice and
+// into and read a 2D rgba32float texture; rendering into a 3D texture takes one pass per slice and
 // WebGL2 cannot do it in one draw). Slice z of a volume whose slices are `size` texels lies at
 // column z % 8, row z / 8 of the atlas, so the 64³ tile is a 512 × 512 texture (within WebGL2's
 // guaranteed 2048). Twins: analyzer/src/noise.rs (atlas_texel, atlas_voxel).

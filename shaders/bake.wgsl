@@ -2,7 +2,7 @@
 // 262144 numbers, too many to paste as a constant). This file is what both bakes share: the
 // hashes, the Gaussian values, the analysis/refinement filters and the full-screen triangle. The
 // passes are in bake2.wgsl (the 2D tile) and bake3.wgsl (the 3D tile of solid textures); each
-// pass is a full-screen triangle into an r32float target. `N` is the tile side, `TILE_SEED` and
+// pass is a full-screen triangle into an rgba32float target (the three components in RGB). `N` is the tile side, `TILE_SEED` and
 // `TILE_STREAM` the hash inputs, `TILE_ODD_OFFSET` the odd shift, and `TILE_MEAN` /
 // `TILE_INV_SD` the normalisation measured by the CPU (all generated constants).
 // The hashes are in hash.wgsl. Twins: analyzer/src/rng.rs (gaussian, f32 here) and

@@ -1,7 +1,9 @@
 // Wavelet noise evaluation and band clamping (noise3 reads the 3D tile through tile3_side and
-// tile3_texel: tile3.wgsl or tile3_atlas.wgsl). Twins: analyzer/src/noise.rs
-// (bspline_weights, weight_lags, phase_variance2/3, noise2, wrap_period, whole_period, noise2_periodic, noise3, band_fade;
-// wrap_coord and wrap_index are private helpers there). Same operation order, f32.
+// tile3_texel: tile3.wgsl or tile3_atlas.wgsl). Twins: analyzer/src/noise.rs (bspline_weights,
+// weight_lags, phase_variance2/3, noise2, wrap_period, whole_period, noise2_periodic, noise3,
+// band_fade; wrap_coord and wrap_index are private helpers there). Same operation order, f32.
+// A band is a vec3: the tile's three independent components, read with one fetch per tap (the
+// structured models' pattern noise takes .x, the Rust *_first functions).
 
 struct BWeights {
     mid: i32,
@@ -55,7 +57,7 @@ fn wrap_index(i: i32, n: i32) -> i32 {
     return i & (n - 1);
 }
 
-fn noise2(p: vec2<f32>) -> f32 {
+fn noise2(p: vec2<f32>) -> vec3<f32> {
     let ni = i32(textureDimensions(tile2).x);
     let nf = f32(ni);
     let bx = bspline_weights(wrap_coord(p.x, nf));
@@ -65,12 +67,12 @@ fn noise2(p: vec2<f32>) -> f32 {
         wrap_index(bx.mid, ni),
         wrap_index(bx.mid + 1, ni),
     );
-    var sum = 0.0;
+    var sum = vec3<f32>(0.0);
     for (var dy = 0; dy < 3; dy++) {
         let row = wrap_index(by.mid + dy - 1, ni);
-        var line = 0.0;
+        var line = vec3<f32>(0.0);
         for (var dx = 0; dx < 3; dx++) {
-            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).r;
+            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).xyz;
         }
         sum += by.w[dy] * line;
     }
@@ -93,7 +95,7 @@ fn whole_period(m: f32, n: f32) -> f32 {
 
 // One 2D band with its coefficient indices wrapped at min(period, n) per axis: periodic with
 // period when each is a whole number (seamless tiles).
-fn noise2_periodic(p: vec2<f32>, period: vec2<f32>) -> f32 {
+fn noise2_periodic(p: vec2<f32>, period: vec2<f32>) -> vec3<f32> {
     let nf = f32(textureDimensions(tile2).x);
     let pw = vec2<f32>(min(period.x, nf), min(period.y, nf));
     let px = i32(pw.x);
@@ -105,19 +107,19 @@ fn noise2_periodic(p: vec2<f32>, period: vec2<f32>) -> f32 {
         wrap_period(bx.mid, px),
         wrap_period(bx.mid + 1, px),
     );
-    var sum = 0.0;
+    var sum = vec3<f32>(0.0);
     for (var dy = 0; dy < 3; dy++) {
         let row = wrap_period(by.mid + dy - 1, py);
-        var line = 0.0;
+        var line = vec3<f32>(0.0);
         for (var dx = 0; dx < 3; dx++) {
-            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).r;
+            line += bx.w[dx] * textureLoad(tile2, vec2<i32>(cols[dx], row), 0).xyz;
         }
         sum += by.w[dy] * line;
     }
     return sum / sqrt(phase_variance2(bx.w, by.w));
 }
 
-fn noise3(p: vec3<f32>) -> f32 {
+fn noise3(p: vec3<f32>) -> vec3<f32> {
     let ni = tile3_side();
     let nf = f32(ni);
     let bx = bspline_weights(wrap_coord(p.x, nf));
@@ -128,13 +130,13 @@ fn noise3(p: vec3<f32>) -> f32 {
         wrap_index(bx.mid, ni),
         wrap_index(bx.mid + 1, ni),
     );
-    var sum = 0.0;
+    var sum = vec3<f32>(0.0);
     for (var dz = 0; dz < 3; dz++) {
         let slab = wrap_index(bz.mid + dz - 1, ni);
-        var plane = 0.0;
+        var plane = vec3<f32>(0.0);
         for (var dy = 0; dy < 3; dy++) {
             let row = wrap_index(by.mid + dy - 1, ni);
-            var line = 0.0;
+            var line = vec3<f32>(0.0);
             for (var dx = 0; dx < 3; dx++) {
                 line += bx.w[dx] * tile3_texel(vec3<i32>(cols[dx], row, slab));
             }

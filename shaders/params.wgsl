@@ -19,8 +19,9 @@ struct Params {
     sigma: vec4<f32>,
     // [band] → weight of channels 0, 1, 2
     weights: array<vec4<f32>, 12>,
-    // [channel·12 + band] → offset (x, y, z) in coefficient units
-    offsets: array<vec4<f32>, 36>,
+    // [band] → offset (x, y, z) in coefficient units (the three channels read their own tile
+    // components at one point)
+    offsets: array<vec4<f32>, 12>,
     // [knot] → knot value of channels 0, 1, 2
     knots: array<vec4<f32>, 33>,
     // [knot] → Fritsch–Carlson tangent of channels 0, 1, 2
@@ -45,7 +46,7 @@ struct Params {
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
-// The 2D wavelet-noise tile (r32float, read with textureLoad: exact coefficients, no
-// filtering). The 3D tile of solid textures is bound at binding 2 by tile3.wgsl (the app's 3D
+// The 2D wavelet-noise tile (rgba32float: its three components in RGB, one fetch for every
+// channel; read with textureLoad: exact coefficients, no filtering). The 3D tile of solid textures is bound at binding 2 by tile3.wgsl (the app's 3D
 // texture) or tile3_atlas.wgsl (exported snippets).
 @group(0) @binding(1) var tile2: texture_2d<f32>;

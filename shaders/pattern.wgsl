@@ -66,14 +66,14 @@ fn octave(q: vec3<f32>, k: u32, per: vec2<f32>) -> f32 {
     let f = f32(1u << k);
     let o = params.pattern_offsets[k].xyz;
     if (params.counts.z != 0u) {
-        return noise3(vec3<f32>(q.x * f + o.x, q.y * f + o.y, q.z * f + o.z));
+        return noise3(vec3<f32>(q.x * f + o.x, q.y * f + o.y, q.z * f + o.z)).x;
     }
     if (per.x > 0.0) {
         let n = f32(textureDimensions(tile2).x);
         let m = vec2<f32>(whole_period(per.x * f, n), whole_period(per.y * f, n));
-        return noise2_periodic(vec2<f32>(q.x / per.x * m.x + o.x, q.y / per.y * m.y + o.y), m);
+        return noise2_periodic(vec2<f32>(q.x / per.x * m.x + o.x, q.y / per.y * m.y + o.y), m).x;
     }
-    return noise2(vec2<f32>(q.x * f + o.x, q.y * f + o.y));
+    return noise2(vec2<f32>(q.x * f + o.x, q.y * f + o.y)).x;
 }
 
 // The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or exp(−sharpness·|n|) (2,

@@ -1,5 +1,5 @@
 // Seamless tiles (the PNG tile export): every band made periodic over the tile. Twins:
-// analyzer/src/seamless.rs (channel_noise_wrapped, pattern_wrapped, seamless_pixel; the entry
+// analyzer/src/seamless.rs (texture_noise_wrapped, pattern_wrapped, seamless_pixel; the entry
 // points' twin is render_rows). Same operation order, f32. Periodic noise: noise2_periodic
 // (noise.wgsl); periodic patterns: pattern_at (pattern.wgsl).
 // Renders in strips: the target is `size` wide and a few rows high, `first_row` says which.
@@ -16,15 +16,15 @@ struct Seamless {
 
 @group(1) @binding(0) var<uniform> seamless: Seamless;
 
-fn channel_noise_wrapped(c: u32, a: vec2<f32>) -> f32 {
-    var sum = 0.0;
+fn texture_noise_wrapped(a: vec2<f32>) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
     for (var j = 0u; j < params.counts.x; j++) {
-        let w = params.weights[j][c] * band_fade(j, seamless.tile.y);
-        if (w == 0.0) {
+        let w = params.weights[j].xyz * band_fade(j, seamless.tile.y);
+        if (all(w == vec3<f32>(0.0))) {
             continue;
         }
         let m = seamless.periods[j / 4u][j % 4u];
-        let o = params.offsets[c * MAX_BANDS + j].xyz;
+        let o = params.offsets[j].xyz;
         sum += w * noise2_periodic(vec2<f32>(a.x * m + o.x, a.y * m + o.y), vec2<f32>(m, m));
     }
     return sum;
@@ -43,11 +43,7 @@ fn seamless_pixel(frag: vec2<f32>) -> vec3<f32> {
     if (params.pattern.x != 0u) {
         base = ramp(pattern_wrapped(a));
     }
-    return colour(vec3<f32>(
-        channel_noise_wrapped(0u, a),
-        channel_noise_wrapped(1u, a),
-        channel_noise_wrapped(2u, a),
-    ), base);
+    return colour(texture_noise_wrapped(a), base);
 }
 
 @vertex

@@ -1,5 +1,5 @@
 // The procedural texture at a point. Twins: analyzer/src/render.rs (Prepared::texel,
-// channel_noise, colour, tone_eval, shade).
+// texture_noise, colour, tone_eval, shade).
 
 fn texel(world: vec3<f32>) -> vec3<f32> {
     let c = params.transform.y;
@@ -12,16 +12,18 @@ fn texel(world: vec3<f32>) -> vec3<f32> {
     );
 }
 
-fn channel_noise(c: u32, u: vec3<f32>, log2_fp: f32) -> f32 {
-    var sum = 0.0;
+// The three channels' multiresolution noise: every band read once (one RGBA fetch per tap),
+// its tile components weighted per channel.
+fn texture_noise(u: vec3<f32>, log2_fp: f32) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
     for (var j = 0u; j < params.counts.x; j++) {
-        let w = params.weights[j][c] * band_fade(j, log2_fp);
-        if (w == 0.0) {
+        let w = params.weights[j].xyz * band_fade(j, log2_fp);
+        if (all(w == vec3<f32>(0.0))) {
             continue;
         }
         let f = 1.0 / f32(1u << j);
-        let o = params.offsets[c * MAX_BANDS + j].xyz;
-        var v: f32;
+        let o = params.offsets[j].xyz;
+        var v: vec3<f32>;
         if (params.counts.z != 0u) {
             v = noise3(vec3<f32>(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z));
         } else {
@@ -80,9 +82,5 @@ fn shade(world: vec3<f32>, log2_fp: f32) -> vec3<f32> {
     if (params.pattern.x != 0u) {
         base = ramp(pattern(u, log2_fp));
     }
-    return colour(vec3<f32>(
-        channel_noise(0u, u, log2_fp),
-        channel_noise(1u, u, log2_fp),
-        channel_noise(2u, u, log2_fp),
-    ), base);
+    return colour(texture_noise(u, log2_fp), base);
 }

@@ -8,7 +8,7 @@ fn tile3_side() -> i32 {
     return i32(textureDimensions(tile3).x) / ATLAS_COLUMNS;
 }
 
-fn tile3_texel(c: vec3<i32>) -> f32 {
+fn tile3_texel(c: vec3<i32>) -> vec3<f32> {
     let n = tile3_side();
-    return textureLoad(tile3, atlas_texel(c, vec2<i32>(n, n)), 0).r;
+    return textureLoad(tile3, atlas_texel(c, vec2<i32>(n, n)), 0).xyz;
 }

@@ -9,7 +9,7 @@ fn main() {
     }
     println!("];");
     let t = proctex::noise::Tile::new_2d(1);
-    println!("// raw 2D band variance {:.5}", t.stats.raw_variance);
+    println!("// raw 2D band variance {:.5}", t.stats[0].raw_variance);
     let t = proctex::noise::Tile::new_3d(1);
-    println!("// raw 3D band variance {:.5}", t.stats.raw_variance);
+    println!("// raw 3D band variance {:.5}", t.stats[0].raw_variance);
 }

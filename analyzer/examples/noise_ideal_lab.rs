@@ -13,7 +13,7 @@
 //! 3. `octave boxes, knots`: the same fields through the model's histogram (its knots and
 //!    spline, `render::colour`) instead of the exact values: the cost of the knots alone.
 //! 4. `model bands, exact`: the model's own noise (its wavelet-noise bands and fitted weights,
-//!    `render::channel_noise`) rank-matched to the exact values: the cost of the band shapes
+//!    `render::texture_noise`) rank-matched to the exact values: the cost of the band shapes
 //!    and weights alone.
 //! 5. `model bands scaled`: the model's noise, each channel scaled to zero mean and the
 //!    deviation its knots assume (`sigma`), through its knots: whether the knots' cost on the
@@ -34,7 +34,7 @@ use proctex::analyze::{Options, analyze_photo};
 use proctex::devset::{Category, overall, parse_manifest};
 use proctex::evaluate::{Fidelity, fidelity_with, random_phase};
 use proctex::input::Photo;
-use proctex::render::{Prepared, channel_noise, colour, tile_for};
+use proctex::render::{Prepared, colour, texture_noise, tile_for};
 use proctex::rng;
 use proctex::spectrum::{fft2_real, ifft2, spectrum_real};
 
@@ -171,8 +171,9 @@ fn model_noise(m: &Model, w: u32, h: u32) -> [Vec<f32>; 3] {
     for y in 0..h {
         for x in 0..w {
             let u = m.prep.texel([x as f32 + 0.5, y as f32 + 0.5, 0.0]);
-            for (c, o) in out.iter_mut().enumerate() {
-                o.push(channel_noise(&m.prep, &tile, c, u, log2_fp));
+            let g = texture_noise(&m.prep, &tile, u, log2_fp);
+            for (o, v) in out.iter_mut().zip(g) {
+                o.push(v);
             }
         }
     }
@@ -219,7 +220,7 @@ fn wide_deviation(m: &Model, c: usize) -> f64 {
             rng::uniform(7, 0x7769_6465, 2 * i + 1) as f32 * 16384.0,
             0.0,
         ];
-        let v = channel_noise(&m.prep, &tile, c, u, -1.0) as f64;
+        let v = texture_noise(&m.prep, &tile, u, -1.0)[c] as f64;
         sum += v;
         sum2 += v * v;
     }

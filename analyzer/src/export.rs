@@ -76,15 +76,7 @@ impl Lang {
 
 /// The band offsets as the `offsets` array of `Params`.
 fn offsets_array(p: &Prepared, lang: Lang) -> String {
-    lang.array(
-        (0..3)
-            .flat_map(|c| (0..MAX_BANDS).map(move |j| (c, j)))
-            .map(|(c, j)| {
-                let o = p.offsets[c][j];
-                [o[0], o[1], o[2], 0.0]
-            }),
-        3 * MAX_BANDS,
-    )
+    lang.array(p.offsets.iter().map(|o| [o[0], o[1], o[2], 0.0]), MAX_BANDS)
 }
 
 /// The line of `shaders/glsl/morph.glsl` that the generated constants replace (GLSL needs them
@@ -145,7 +137,7 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
 }
 
 /// The tile-bake constants of a texture (its 2D or 3D tile, from the seed).
-fn bake_inputs(params: &Params) -> (u32, u32, u32, f64, f64) {
+fn bake_inputs(params: &Params) -> (u32, u32, u32, [f64; 3], [f64; 3]) {
     let tile = tile_for(params);
     let stream = if params.solid {
         stream::TILE_3D
@@ -156,8 +148,8 @@ fn bake_inputs(params: &Params) -> (u32, u32, u32, f64, f64) {
         tile.n as u32,
         params.seed,
         stream,
-        tile.stats.raw_mean,
-        1.0 / tile.stats.raw_variance.sqrt(),
+        tile.stats.map(|s| s.raw_mean),
+        tile.stats.map(|s| 1.0 / s.raw_variance.sqrt()),
     )
 }
 

@@ -47,6 +47,12 @@ fn a_coeff(j: i64) -> f64 {
     }
 }
 
+/// Independent noise fields per tile, one per decorrelated colour channel. They are stored side
+/// by side (planes on the CPU, the RGB of one RGBA texel on the GPU), so that one texture fetch
+/// at a point serves all three channels: the channels used to read one field at three offsets,
+/// three fetches where one now does.
+pub const COMPONENTS: usize = 3;
+
 /// What tile generation measured, for reports and tests.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TileStats {
@@ -56,17 +62,18 @@ pub struct TileStats {
     pub raw_mean: f64,
 }
 
-/// A wavelet-noise tile: `n^dims` coefficients, x fastest.
+/// A wavelet-noise tile: [`COMPONENTS`] independent fields of `n^dims` coefficients each.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tile {
     /// Number of dimensions, 2 or 3.
     pub dims: usize,
     /// Side length (even).
     pub n: usize,
-    /// Coefficients, index `x + n·y (+ n²·z)`.
+    /// Coefficients, component `k`'s at `k·n^dims + x + n·y (+ n²·z)`: the planes one after
+    /// another, so that component 0 alone is the first `n^dims` values.
     pub data: Vec<f32>,
-    /// Measurements taken while generating.
-    pub stats: TileStats,
+    /// Measurements taken while generating, per component.
+    pub stats: [TileStats; COMPONENTS],
 }
 
 impl Tile {
@@ -80,63 +87,85 @@ impl Tile {
         Self::generate(seed, 3, TILE_3D, rng::stream::TILE_3D)
     }
 
-    /// Cook & DeRose's construction, then normalisation (see the module docs).
+    /// Component `k`'s coefficients.
+    pub fn plane(&self, k: usize) -> &[f32] {
+        let len = self.n.pow(self.dims as u32);
+        &self.data[k * len..(k + 1) * len]
+    }
+
+    /// Cook & DeRose's construction, then normalisation (see the module docs), for every
+    /// component: component `k` draws the Gaussian values `k·n^dims …` of `stream`.
     pub fn generate(seed: u32, dims: usize, n: usize, stream: u32) -> Self {
         assert!(dims == 2 || dims == 3, "tiles are 2D or 3D");
         assert!(
             n >= 4 && n.is_power_of_two(),
             "tile side must be a power of two, at least 4"
         );
-        let total = n.pow(dims as u32);
-        let r: Vec<f64> = (0..total)
-            .map(|i| rng::gaussian(seed, stream, i as u32))
-            .collect();
-
-        // R↓↑: down- then up-sample along every axis in turn (separable).
-        let mut low = r.clone();
-        let mut line = vec![0.0; n];
-        let mut half = vec![0.0; n / 2];
-        for axis in 0..dims {
-            for_each_line(n, dims, axis, |start, stride| {
-                for i in 0..n {
-                    line[i] = low[start + i * stride];
-                }
-                downsample(&line, &mut half);
-                upsample(&half, &mut line);
-                for i in 0..n {
-                    low[start + i * stride] = line[i];
-                }
-            });
-        }
-        let band: Vec<f64> = r.iter().zip(&low).map(|(a, b)| a - b).collect();
-
-        // Even/odd variance fix: add a copy shifted by an odd offset along every axis.
-        let mut offset = n / 2;
-        if offset.is_multiple_of(2) {
-            offset += 1;
-        }
-        let mut data: Vec<f64> = (0..total)
-            .map(|i| band[i] + band[shift_index(i, n, dims, offset)])
-            .collect();
-
-        let raw_mean = data.iter().sum::<f64>() / total as f64;
-        data.iter_mut().for_each(|v| *v -= raw_mean);
-        let raw_variance = evaluated_variance(&data, n, dims);
-        let inv_sd = if raw_variance > 0.0 {
-            1.0 / raw_variance.sqrt()
-        } else {
-            0.0
-        };
+        let mut data = Vec::with_capacity(COMPONENTS * n.pow(dims as u32));
+        let stats = std::array::from_fn(|k| {
+            let (plane, stats) = component(seed, dims, n, stream, k);
+            data.extend(plane);
+            stats
+        });
         Tile {
             dims,
             n,
-            data: data.iter().map(|v| (v * inv_sd) as f32).collect(),
-            stats: TileStats {
-                raw_variance,
-                raw_mean,
-            },
+            data,
+            stats,
         }
     }
+}
+
+/// One component of a tile: its normalised coefficients and what generating it measured.
+fn component(seed: u32, dims: usize, n: usize, stream: u32, k: usize) -> (Vec<f32>, TileStats) {
+    let total = n.pow(dims as u32);
+    let first = (k * total) as u32;
+    let r: Vec<f64> = (0..total)
+        .map(|i| rng::gaussian(seed, stream, first + i as u32))
+        .collect();
+
+    // R↓↑: down- then up-sample along every axis in turn (separable).
+    let mut low = r.clone();
+    let mut line = vec![0.0; n];
+    let mut half = vec![0.0; n / 2];
+    for axis in 0..dims {
+        for_each_line(n, dims, axis, |start, stride| {
+            for i in 0..n {
+                line[i] = low[start + i * stride];
+            }
+            downsample(&line, &mut half);
+            upsample(&half, &mut line);
+            for i in 0..n {
+                low[start + i * stride] = line[i];
+            }
+        });
+    }
+    let band: Vec<f64> = r.iter().zip(&low).map(|(a, b)| a - b).collect();
+
+    // Even/odd variance fix: add a copy shifted by an odd offset along every axis.
+    let mut offset = n / 2;
+    if offset.is_multiple_of(2) {
+        offset += 1;
+    }
+    let mut data: Vec<f64> = (0..total)
+        .map(|i| band[i] + band[shift_index(i, n, dims, offset)])
+        .collect();
+
+    let raw_mean = data.iter().sum::<f64>() / total as f64;
+    data.iter_mut().for_each(|v| *v -= raw_mean);
+    let raw_variance = evaluated_variance(&data, n, dims);
+    let inv_sd = if raw_variance > 0.0 {
+        1.0 / raw_variance.sqrt()
+    } else {
+        0.0
+    };
+    (
+        data.iter().map(|v| (v * inv_sd) as f32).collect(),
+        TileStats {
+            raw_variance,
+            raw_mean,
+        },
+    )
 }
 
 /// Calls `f(start, stride)` for every line of the tile along `axis`.
@@ -303,23 +332,58 @@ fn wrap_index(i: i32, n: i32) -> usize {
     (i & (n - 1)) as usize
 }
 
-/// One 2D wavelet-noise band at `p` (coefficient units), periodic with period `n`.
+/// One 2D wavelet-noise band of every component at `p` (coefficient units), periodic with
+/// period `n`: `tile` holds the [`COMPONENTS`] planes ([`Tile::data`]).
 #[inline]
-pub fn noise2(tile: &[f32], n: usize, p: [f32; 2]) -> f32 {
+pub fn noise2(tile: &[f32], n: usize, p: [f32; 2]) -> [f32; COMPONENTS] {
+    noise2_components(tile, n, p)
+}
+
+/// Component 0 of [`noise2`], the same operations on the first plane alone (the structured
+/// models' pattern noise reads only it; the GPU takes `.x` of the one fetch).
+#[inline]
+pub fn noise2_first(tile: &[f32], n: usize, p: [f32; 2]) -> f32 {
+    noise2_components::<1>(tile, n, p)[0]
+}
+
+#[inline]
+fn noise2_components<const K: usize>(tile: &[f32], n: usize, p: [f32; 2]) -> [f32; K] {
     let nf = n as f32;
     let ni = n as i32;
+    let plane = n * n;
     let (mx, wx) = bspline_weights(wrap_coord(p[0], nf));
     let (my, wy) = bspline_weights(wrap_coord(p[1], nf));
-    let mut sum = 0.0f32;
+    let rows = [0, 1, 2].map(|d| wrap_index(my + d - 1, ni) * n);
+    let cols = [0, 1, 2].map(|d| wrap_index(mx + d - 1, ni));
+    band_3x3(tile, plane, rows, cols, wx, wy)
+}
+
+/// The B-spline sum over the 3×3 coefficients at `rows` (offsets of their rows) and `cols`
+/// of every component (planes `plane` apart), divided by the band's deviation at the phase.
+#[inline]
+fn band_3x3<const K: usize>(
+    tile: &[f32],
+    plane: usize,
+    rows: [usize; 3],
+    cols: [usize; 3],
+    wx: [f32; 3],
+    wy: [f32; 3],
+) -> [f32; K] {
+    let mut sum = [0.0f32; K];
     for dy in 0..3 {
-        let row = wrap_index(my + dy as i32 - 1, ni) * n;
-        let mut line = 0.0f32;
+        let mut line = [0.0f32; K];
         for dx in 0..3 {
-            line += wx[dx] * tile[row + wrap_index(mx + dx as i32 - 1, ni)];
+            let i = rows[dy] + cols[dx];
+            for k in 0..K {
+                line[k] += wx[dx] * tile[i + k * plane];
+            }
         }
-        sum += wy[dy] * line;
+        for k in 0..K {
+            sum[k] += wy[dy] * line[k];
+        }
     }
-    sum / phase_variance2(wx, wy).sqrt()
+    let sd = phase_variance2(wx, wy).sqrt();
+    sum.map(|v| v / sd)
 }
 
 /// `i mod m` for any `m ≥ 1` (a wrapped period need not be a power of two).
@@ -340,51 +404,82 @@ pub fn whole_period(m: f32, n: f32) -> f32 {
     }
 }
 
-/// One 2D band at `p` (coefficient units) with its coefficient indices wrapped at
-/// `min(period, n)` per axis: periodic with `period` (per axis) when each is a whole number
-/// (see [`whole_period`]). The quadratic B-spline of a wrapped coefficient sequence is
+/// One 2D band of every component at `p` (coefficient units) with its coefficient indices
+/// wrapped at `min(period, n)` per axis: periodic with `period` (per axis) when each is a whole
+/// number (see [`whole_period`]). The quadratic B-spline of a wrapped coefficient sequence is
 /// periodic and C¹, so a seamless tile's edges continue each other like interior pixels.
 #[inline]
-pub fn noise2_periodic(tile: &[f32], n: usize, p: [f32; 2], period: [f32; 2]) -> f32 {
+pub fn noise2_periodic(tile: &[f32], n: usize, p: [f32; 2], period: [f32; 2]) -> [f32; COMPONENTS] {
+    noise2_periodic_components(tile, n, p, period)
+}
+
+/// Component 0 of [`noise2_periodic`] (see [`noise2_first`]).
+#[inline]
+pub fn noise2_periodic_first(tile: &[f32], n: usize, p: [f32; 2], period: [f32; 2]) -> f32 {
+    noise2_periodic_components::<1>(tile, n, p, period)[0]
+}
+
+#[inline]
+fn noise2_periodic_components<const K: usize>(
+    tile: &[f32],
+    n: usize,
+    p: [f32; 2],
+    period: [f32; 2],
+) -> [f32; K] {
+    let plane = n * n;
     let pw = [period[0].min(n as f32), period[1].min(n as f32)];
     let (px, py) = (pw[0] as i32, pw[1] as i32);
     let (mx, wx) = bspline_weights(wrap_coord(p[0], pw[0]));
     let (my, wy) = bspline_weights(wrap_coord(p[1], pw[1]));
-    let mut sum = 0.0f32;
-    for dy in 0..3 {
-        let row = wrap_period(my + dy as i32 - 1, py) * n;
-        let mut line = 0.0f32;
-        for dx in 0..3 {
-            line += wx[dx] * tile[row + wrap_period(mx + dx as i32 - 1, px)];
-        }
-        sum += wy[dy] * line;
-    }
-    sum / phase_variance2(wx, wy).sqrt()
+    let rows = [0, 1, 2].map(|d| wrap_period(my + d - 1, py) * n);
+    let cols = [0, 1, 2].map(|d| wrap_period(mx + d - 1, px));
+    band_3x3(tile, plane, rows, cols, wx, wy)
 }
 
-/// One 3D wavelet-noise band at `p` (coefficient units), periodic with period `n`.
+/// One 3D wavelet-noise band of every component at `p` (coefficient units), periodic with
+/// period `n`.
 #[inline]
-pub fn noise3(tile: &[f32], n: usize, p: [f32; 3]) -> f32 {
+pub fn noise3(tile: &[f32], n: usize, p: [f32; 3]) -> [f32; COMPONENTS] {
+    noise3_components(tile, n, p)
+}
+
+/// Component 0 of [`noise3`] (see [`noise2_first`]).
+#[inline]
+pub fn noise3_first(tile: &[f32], n: usize, p: [f32; 3]) -> f32 {
+    noise3_components::<1>(tile, n, p)[0]
+}
+
+#[inline]
+fn noise3_components<const K: usize>(tile: &[f32], n: usize, p: [f32; 3]) -> [f32; K] {
     let nf = n as f32;
     let ni = n as i32;
+    let volume = n * n * n;
     let (mx, wx) = bspline_weights(wrap_coord(p[0], nf));
     let (my, wy) = bspline_weights(wrap_coord(p[1], nf));
     let (mz, wz) = bspline_weights(wrap_coord(p[2], nf));
-    let mut sum = 0.0f32;
+    let mut sum = [0.0f32; K];
     for dz in 0..3 {
         let slab = wrap_index(mz + dz as i32 - 1, ni) * n * n;
-        let mut plane = 0.0f32;
+        let mut plane = [0.0f32; K];
         for dy in 0..3 {
             let row = slab + wrap_index(my + dy as i32 - 1, ni) * n;
-            let mut line = 0.0f32;
+            let mut line = [0.0f32; K];
             for dx in 0..3 {
-                line += wx[dx] * tile[row + wrap_index(mx + dx as i32 - 1, ni)];
+                let i = row + wrap_index(mx + dx as i32 - 1, ni);
+                for k in 0..K {
+                    line[k] += wx[dx] * tile[i + k * volume];
+                }
             }
-            plane += wy[dy] * line;
+            for k in 0..K {
+                plane[k] += wy[dy] * line[k];
+            }
         }
-        sum += wz[dz] * plane;
+        for k in 0..K {
+            sum[k] += wz[dz] * plane[k];
+        }
     }
-    sum / phase_variance3(wx, wy, wz).sqrt()
+    let sd = phase_variance3(wx, wy, wz).sqrt();
+    sum.map(|v| v / sd)
 }
 
 /// Side of the 3D tile (twin of `tile3_side` in `shaders/tile3.wgsl` and `tile3_atlas.wgsl`).
@@ -393,11 +488,13 @@ pub fn tile3_side(tile: &Tile) -> usize {
     tile.n
 }
 
-/// Coefficient `c` of a 3D tile of side `n` (twin of `tile3_texel` in `shaders/tile3.wgsl`
-/// and `tile3_atlas.wgsl`; [`noise3`] inlines this indexing with precomputed row offsets).
+/// Coefficient `c` of every component of a 3D tile of side `n` (twin of `tile3_texel` in
+/// `shaders/tile3.wgsl` and `tile3_atlas.wgsl`; [`noise3`] inlines this indexing with
+/// precomputed row offsets).
 #[inline]
-pub fn tile3_texel(tile: &[f32], n: usize, c: [usize; 3]) -> f32 {
-    tile[c[0] + n * (c[1] + n * c[2])]
+pub fn tile3_texel(tile: &[f32], n: usize, c: [usize; 3]) -> [f32; COMPONENTS] {
+    let i = c[0] + n * (c[1] + n * c[2]);
+    std::array::from_fn(|k| tile[i + k * n * n * n])
 }
 
 /// Slices per row of a slice atlas (`ATLAS_COLUMNS` in `shaders/atlas3.wgsl`).
@@ -425,22 +522,36 @@ pub fn atlas_voxel(t: [usize; 2], size: [usize; 2]) -> [usize; 3] {
 }
 
 impl Tile {
-    /// A 3D tile as the slice atlas that exported solid textures bake (`8n × n²/8`, row-major):
-    /// what `fs_bake3_tile` must produce.
+    /// A 3D tile as the slice atlas that exported solid textures bake (`8n × n²/8`, row-major,
+    /// RGBA: the components in RGB, 0 in A): what `fs_bake3_tile` must produce.
     pub fn atlas(&self) -> (usize, usize, Vec<f32>) {
         assert_eq!(self.dims, 3, "only 3D tiles have an atlas");
         let n = self.n;
         let (w, h) = (n * ATLAS_COLUMNS, n * n / ATLAS_COLUMNS);
-        let mut out = vec![0.0; w * h];
+        let mut out = vec![0.0; 4 * w * h];
         for z in 0..n {
             for y in 0..n {
                 for x in 0..n {
                     let [u, v] = atlas_texel([x, y, z], [n, n]);
-                    out[u + w * v] = tile3_texel(&self.data, n, [x, y, z]);
+                    let t = tile3_texel(&self.data, n, [x, y, z]);
+                    out[4 * (u + w * v)..][..COMPONENTS].copy_from_slice(&t);
                 }
             }
         }
         (w, h, out)
+    }
+
+    /// The coefficients as RGBA texels, x fastest (the components in RGB, 0 in A): what the GPU
+    /// tile texture holds, one fetch for every component.
+    pub fn rgba(&self) -> Vec<f32> {
+        let len = self.n.pow(self.dims as u32);
+        let mut out = vec![0.0; 4 * len];
+        for k in 0..COMPONENTS {
+            for (i, v) in self.plane(k).iter().enumerate() {
+                out[4 * i + k] = *v;
+            }
+        }
+        out
     }
 }
 
@@ -491,13 +602,26 @@ mod tests {
     #[test]
     fn tile_is_normalised_and_deterministic() {
         let t = Tile::new_2d(3);
-        assert_eq!(t.data.len(), TILE_2D * TILE_2D);
+        assert_eq!(t.data.len(), COMPONENTS * TILE_2D * TILE_2D);
         assert_eq!(t, Tile::new_2d(3));
         assert_ne!(t.data, Tile::new_2d(4).data);
-        let c: Vec<f64> = t.data.iter().map(|&v| v as f64).collect();
-        let var = evaluated_variance(&c, TILE_2D, 2);
-        assert!((var - 1.0).abs() < 1e-5, "{var}");
-        assert!(t.stats.raw_variance > 0.1 && t.stats.raw_variance < 1.0);
+        for k in 0..COMPONENTS {
+            let c: Vec<f64> = t.plane(k).iter().map(|&v| v as f64).collect();
+            let var = evaluated_variance(&c, TILE_2D, 2);
+            assert!((var - 1.0).abs() < 1e-5, "{var}");
+            assert!(t.stats[k].raw_variance > 0.1 && t.stats[k].raw_variance < 1.0);
+        }
+        // The components are independent fields: their coefficients are uncorrelated.
+        for (a, b) in [(0, 1), (0, 2), (1, 2)] {
+            let r: f64 = t
+                .plane(a)
+                .iter()
+                .zip(t.plane(b))
+                .map(|(x, y)| *x as f64 * *y as f64)
+                .sum::<f64>()
+                / (TILE_2D * TILE_2D) as f64;
+            assert!(r.abs() < 0.05 * 5.58, "components {a}, {b}: {r}");
+        }
     }
 
     #[test]
@@ -512,7 +636,7 @@ mod tests {
                     (x as f32 + 0.37) / steps as f32,
                     (y as f32 + 0.61) / steps as f32,
                 ];
-                let v = noise2(&t.data, n, p) as f64;
+                let v = noise2(&t.data, n, p)[1] as f64;
                 s1 += v;
                 s2 += v * v;
                 count += 1.0;
@@ -539,12 +663,12 @@ mod tests {
             let x = k as f32 + 0.5;
             let e = 1e-3f32;
             let y = 7.3;
-            let l = noise2(&t.data, TILE_2D, [x - e, y]);
-            let c = noise2(&t.data, TILE_2D, [x, y]);
-            let r = noise2(&t.data, TILE_2D, [x + e, y]);
+            let l = noise2_first(&t.data, TILE_2D, [x - e, y]);
+            let c = noise2_first(&t.data, TILE_2D, [x, y]);
+            let r = noise2_first(&t.data, TILE_2D, [x + e, y]);
             assert!((l - c).abs() < 0.05 && (r - c).abs() < 0.05);
-            let l2 = noise2(&t.data, TILE_2D, [x - 2.0 * e, y]);
-            let r2 = noise2(&t.data, TILE_2D, [x + 2.0 * e, y]);
+            let l2 = noise2_first(&t.data, TILE_2D, [x - 2.0 * e, y]);
+            let r2 = noise2_first(&t.data, TILE_2D, [x + 2.0 * e, y]);
             let slope_l = (l - l2) / e;
             let slope_r = (r2 - r) / e;
             assert!(
@@ -562,7 +686,10 @@ mod tests {
             let p = [i as f32 * 1.37, i as f32 * 0.71];
             let a = noise2(&t.data, TILE_2D, p);
             let b = noise2(&t.data, TILE_2D, [p[0] + n, p[1] - n]);
-            assert!((a - b).abs() < 1e-4);
+            for k in 0..COMPONENTS {
+                assert!((a[k] - b[k]).abs() < 1e-4);
+            }
+            assert_eq!(a[0], noise2_first(&t.data, TILE_2D, p));
         }
         let t3 = Tile::new_3d(2);
         let n3 = TILE_3D as f32;
@@ -570,12 +697,15 @@ mod tests {
             let p = [i as f32 * 1.37, i as f32 * 0.71, i as f32 * 0.3];
             let a = noise3(&t3.data, TILE_3D, p);
             let b = noise3(&t3.data, TILE_3D, [p[0] + n3, p[1], p[2] - n3]);
-            assert!((a - b).abs() < 1e-4);
+            for k in 0..COMPONENTS {
+                assert!((a[k] - b[k]).abs() < 1e-4);
+            }
+            assert_eq!(a[0], noise3_first(&t3.data, TILE_3D, p));
         }
     }
 
     /// The mean product of coefficients `lag` apart (periodic), over one tile.
-    fn autocorrelation(t: &Tile, lag: [usize; 3]) -> f64 {
+    fn autocorrelation(t: &Tile, k: usize, lag: [usize; 3]) -> f64 {
         let n = t.n;
         let depth = if t.dims == 3 { n } else { 1 };
         let mut s = 0.0f64;
@@ -585,34 +715,37 @@ mod tests {
                     let a = x + n * (y + n * z);
                     let (bx, by) = ((x + lag[0]) % n, (y + lag[1]) % n);
                     let bz = if t.dims == 3 { (z + lag[2]) % n } else { 0 };
-                    s += t.data[a] as f64 * t.data[bx + n * (by + n * bz)] as f64;
+                    let plane = t.plane(k);
+                    s += plane[a] as f64 * plane[bx + n * (by + n * bz)] as f64;
                 }
             }
         }
-        s / t.data.len() as f64
+        s / t.plane(k).len() as f64
     }
 
     #[test]
     fn tile_lags_match_the_constants() {
-        // Expected over seeds; one tile's own lags scatter about them by ~1 %.
+        // Expected over seeds and components; one tile's own lags scatter about them by ~1 %.
         let seeds = 0..6u32;
-        let count = seeds.len() as f64;
+        let count = (seeds.len() * COMPONENTS) as f64;
         let mut two = [0.0f64; 3];
         let mut three = [0.0f64; 4];
         let mut two_far = 0.0f64;
         for seed in seeds {
             let t = Tile::new_2d(seed);
-            for (k, lag) in [[0, 0, 0], [1, 0, 0], [1, 1, 0]].iter().enumerate() {
-                two[k] += autocorrelation(&t, *lag) / count;
-            }
-            two_far +=
-                (autocorrelation(&t, [2, 0, 0]) + autocorrelation(&t, [0, 2, 0])) / (2.0 * count);
             let t3 = Tile::new_3d(seed);
-            for (k, lag) in [[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]
-                .iter()
-                .enumerate()
-            {
-                three[k] += autocorrelation(&t3, *lag) / count;
+            for c in 0..COMPONENTS {
+                for (k, lag) in [[0, 0, 0], [1, 0, 0], [1, 1, 0]].iter().enumerate() {
+                    two[k] += autocorrelation(&t, c, *lag) / count;
+                }
+                two_far += (autocorrelation(&t, c, [2, 0, 0]) + autocorrelation(&t, c, [0, 2, 0]))
+                    / (2.0 * count);
+                for (k, lag) in [[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 1]]
+                    .iter()
+                    .enumerate()
+                {
+                    three[k] += autocorrelation(&t3, c, *lag) / count;
+                }
             }
         }
         for (m, c) in two.iter().zip(TILE2_LAGS) {
@@ -671,8 +804,9 @@ mod tests {
             let mut s2 = 0.0f64;
             for y in 0..n {
                 for x in 0..n {
-                    let v = noise2(&t.data, n, [x as f32 + fx, y as f32 + fy]) as f64;
-                    s2 += v * v;
+                    for v in noise2(&t.data, n, [x as f32 + fx, y as f32 + fy]) {
+                        s2 += (v as f64).powi(2) / COMPONENTS as f64;
+                    }
                 }
             }
             let sd = (s2 / (n * n) as f64).sqrt();

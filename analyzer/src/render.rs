@@ -40,8 +40,9 @@ pub struct Prepared {
     pub basis: [[f32; 3]; 3],
     /// Per channel band weights, zero past `bands`.
     pub weights: [[f32; MAX_BANDS]; 3],
-    /// Per channel band offsets in coefficient units (x, y, z).
-    pub offsets: [[[f32; 3]; MAX_BANDS]; 3],
+    /// Band offsets in coefficient units (x, y, z), one per band: the three channels read
+    /// their own tile components at the same point.
+    pub offsets: [[f32; 3]; MAX_BANDS],
     /// Per channel knot values.
     pub knot_values: [[f32; MAX_KNOTS]; 3],
     /// Per channel Fritsch–Carlson tangents.
@@ -85,7 +86,7 @@ impl Prepared {
             contrast: params.colour.contrast,
             basis: params.colour.basis,
             weights: [[0.0; MAX_BANDS]; 3],
-            offsets: [[[0.0; 3]; MAX_BANDS]; 3],
+            offsets: [[0.0; 3]; MAX_BANDS],
             knot_values: [[0.0; MAX_KNOTS]; 3],
             tangents: [[0.0; MAX_KNOTS]; 3],
             sigma: model.sigma(),
@@ -128,12 +129,12 @@ impl Prepared {
                 }
             }
         }
+        for j in 0..MAX_BANDS {
+            p.offsets[j] = band_offset(params.seed, j).map(|f| offset_coeffs(f, tile_n));
+        }
         for c in 0..3 {
             for (j, &w) in model.weights[c].iter().enumerate().take(MAX_BANDS) {
                 p.weights[c][j] = w;
-            }
-            for j in 0..MAX_BANDS {
-                p.offsets[c][j] = band_offset(params.seed, c, j).map(|f| offset_coeffs(f, tile_n));
             }
             let k = &model.histogram.knots[c];
             let t = fc_tangents(k);
@@ -146,7 +147,7 @@ impl Prepared {
     /// Size of [`Prepared::uniform_bytes`]: the `Params` struct of `shaders/params.wgsl`.
     pub const UNIFORM_SIZE: usize = 16
         * (7 + MAX_BANDS
-            + 3 * MAX_BANDS
+            + MAX_BANDS
             + 2 * MAX_KNOTS
             + 4
             + OCTAVES
@@ -156,7 +157,7 @@ impl Prepared {
 
     /// The GPU uniform block, little-endian, laid out as `struct Params` in
     /// `shaders/params.wgsl` (every field a vec4): (mean, contrast), basis rows, (1/scale, cos, sin),
-    /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[channel·12 + band],
+    /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[band],
     /// knots[k], tangents[k], then the pattern: (kind, stops, seed, 0) as u32, its transform,
     /// its 8 values, its octave offsets, the ramp stops (RGB, at), and the output tone curve:
     /// `lo`, `1 / (hi − lo)`, knots[k], tangents[k].
@@ -191,11 +192,8 @@ impl Prepared {
                 0.0,
             ]);
         }
-        for c in 0..3 {
-            for j in 0..MAX_BANDS {
-                let o = self.offsets[c][j];
-                g4([o[0], o[1], o[2], 0.0]);
-            }
+        for o in self.offsets {
+            g4([o[0], o[1], o[2], 0.0]);
         }
         for k in 0..MAX_KNOTS {
             g4([
@@ -290,9 +288,11 @@ pub fn pattern_offsets(seed: u32, tile_n: f32) -> [[f32; 3]; OCTAVES] {
     })
 }
 
-/// The random offset `o_cj` of channel `c`, band `j`, as fractions of the tile side.
-pub fn band_offset(seed: u32, channel: usize, band: usize) -> [f32; 3] {
-    let base = ((channel * MAX_BANDS + band) * 3) as u32;
+/// The random offset `o_j` of band `j`, as fractions of the tile side. (Lagae offsets every
+/// channel's band on its own; here the channels read independent tile components at one offset,
+/// which draws the same independent fields with one fetch.)
+pub fn band_offset(seed: u32, band: usize) -> [f32; 3] {
+    let base = (band * 3) as u32;
     [0, 1, 2].map(|a| rng::uniform(seed, rng::stream::BAND_OFFSETS, base + a) as f32)
 }
 
@@ -305,37 +305,41 @@ pub fn tile_for(params: &Params) -> Tile {
     }
 }
 
-/// The multiresolution noise of one channel at texel `u` (Lagae eq. 1 with band clamping).
+/// The multiresolution noise of the three channels at texel `u` (Lagae eq. 1 with band
+/// clamping): every band read once, its tile components weighted per channel.
 #[inline]
-pub fn channel_noise(prep: &Prepared, tile: &Tile, c: usize, u: [f32; 3], log2_fp: f32) -> f32 {
-    band_sum(prep, c, log2_fp, |j| band_noise(prep, tile, c, j, u))
+pub fn texture_noise(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> [f32; 3] {
+    band_sum(prep, log2_fp, |j| band_noise(prep, tile, j, u))
 }
 
-/// Channel `c`'s bands weighted and summed, band `j`'s noise value given by `band(j)` (asked
-/// only for bands with a weight at this footprint).
+/// The three channels' bands weighted and summed, band `j`'s noise values given by `band(j)`
+/// (asked only for bands with a weight at this footprint).
 #[inline]
 pub(crate) fn band_sum(
     prep: &Prepared,
-    c: usize,
     log2_fp: f32,
-    band: impl Fn(usize) -> f32,
-) -> f32 {
-    let mut sum = 0.0f32;
+    band: impl Fn(usize) -> [f32; 3],
+) -> [f32; 3] {
+    let mut sum = [0.0f32; 3];
     for j in 0..prep.bands as usize {
-        let w = prep.weights[c][j] * band_fade(j as u32, log2_fp);
-        if w == 0.0 {
+        let fade = band_fade(j as u32, log2_fp);
+        let w = [0, 1, 2].map(|c| prep.weights[c][j] * fade);
+        if w == [0.0; 3] {
             continue;
         }
-        sum += w * band(j);
+        let v = band(j);
+        for c in 0..3 {
+            sum[c] += w[c] * v[c];
+        }
     }
     sum
 }
 
-/// Band `j`'s noise of channel `c` at texel `u`, unweighted.
+/// Band `j`'s noise of the three channels at texel `u`, unweighted.
 #[inline]
-pub(crate) fn band_noise(prep: &Prepared, tile: &Tile, c: usize, j: usize, u: [f32; 3]) -> f32 {
+pub(crate) fn band_noise(prep: &Prepared, tile: &Tile, j: usize, u: [f32; 3]) -> [f32; 3] {
     let f = 1.0 / (1u32 << j) as f32;
-    let o = prep.offsets[c][j];
+    let o = prep.offsets[j];
     if prep.solid {
         noise3(
             &tile.data,
@@ -406,11 +410,7 @@ pub fn shade(prep: &Prepared, tile: &Tile, world: [f32; 3], log2_fp: f32) -> [f3
     } else {
         prep.mean
     };
-    colour(
-        prep,
-        [0, 1, 2].map(|c| channel_noise(prep, tile, c, u, log2_fp)),
-        base,
-    )
+    colour(prep, texture_noise(prep, tile, u, log2_fp), base)
 }
 
 /// Which part of world space an image shows.

@@ -145,29 +145,27 @@ pub fn plane(params: &Params) -> Params {
     p
 }
 
-/// The multiresolution noise of channel `c` at tile position `a` (0..1 per axis).
+/// The multiresolution noise of the three channels at tile position `a` (0..1 per axis).
 #[inline]
-pub fn channel_noise_wrapped(
-    prep: &Prepared,
-    tile: &Tile,
-    s: &Seamless,
-    c: usize,
-    a: [f32; 2],
-) -> f32 {
-    let mut sum = 0.0f32;
+pub fn texture_noise_wrapped(prep: &Prepared, tile: &Tile, s: &Seamless, a: [f32; 2]) -> [f32; 3] {
+    let mut sum = [0.0f32; 3];
     for j in 0..prep.bands as usize {
-        let w = prep.weights[c][j] * band_fade(j as u32, s.log2_fp);
-        if w == 0.0 {
+        let fade = band_fade(j as u32, s.log2_fp);
+        let w = [0, 1, 2].map(|c| prep.weights[c][j] * fade);
+        if w == [0.0; 3] {
             continue;
         }
         let m = s.periods[j];
-        let o = prep.offsets[c][j];
-        sum += w * noise2_periodic(
+        let o = prep.offsets[j];
+        let v = noise2_periodic(
             &tile.data,
             tile.n,
             [a[0] * m + o[0], a[1] * m + o[1]],
             [m, m],
         );
+        for c in 0..3 {
+            sum[c] += w[c] * v[c];
+        }
     }
     sum
 }
@@ -193,11 +191,7 @@ pub fn seamless_pixel(
     } else {
         prep.mean
     };
-    colour(
-        prep,
-        [0, 1, 2].map(|c| channel_noise_wrapped(prep, tile, s, c, a)),
-        base,
-    )
+    colour(prep, texture_noise_wrapped(prep, tile, s, a), base)
 }
 
 /// The structure value of a structured model at tile position `a` (0..1 per axis): the
@@ -439,10 +433,12 @@ mod tests {
                     [x + period, y - period],
                     [period, period],
                 );
-                assert!(
-                    (a - b).abs() < 1e-4,
-                    "period {period} at ({x}, {y}): {a} vs {b}"
-                );
+                for k in 0..a.len() {
+                    assert!(
+                        (a[k] - b[k]).abs() < 1e-4,
+                        "period {period} at ({x}, {y}): {a:?} vs {b:?}"
+                    );
+                }
             }
         }
     }

@@ -426,7 +426,7 @@ pub fn nonneg_solve(l: &[Vec<f64>], p: &[f64]) -> Vec<f64> {
 /// per pixel, and averages its band powers over `seeds`. Returns `L[j][i]`.
 pub fn measure_leakage(size: usize, seeds: &[u32]) -> Vec<Vec<f64>> {
     use crate::params::{Colour, FORMAT, Histogram, Model, NoiseModel, Params, Transform};
-    use crate::render::{Prepared, channel_noise, tile_for};
+    use crate::render::{Prepared, texture_noise, tile_for};
     let nb = num_bands(size, size);
     let mut l = vec![vec![0.0; nb]; nb];
     for &seed in seeds {
@@ -460,7 +460,7 @@ pub fn measure_leakage(size: usize, seeds: &[u32]) -> Vec<Vec<f64>> {
             let img: Vec<f32> = (0..size * size)
                 .map(|k| {
                     let (x, y) = ((k % size) as f32 + 0.5, (k / size) as f32 + 0.5);
-                    channel_noise(&prep, &tile, 0, prep.texel([x, y, 0.0]), 0.0)
+                    texture_noise(&prep, &tile, prep.texel([x, y, 0.0]), 0.0)[0]
                 })
                 .collect();
             let p = band_powers(&img, size, size, nb, true);

@@ -6,30 +6,34 @@
 //   pass 4, T (N, N, N),   atlas 8N x N*N/8:  R - C up-sampled along z, odd shift, normalised
 // (the previous pass's target bound to proctex_bake_src).
 
-// The Gaussian coefficient R at tile voxel (x, y, z), wrapped.
-float r_value3(int x, int y, int z) {
+// The Gaussian coefficients R of the tile's three components at voxel (x, y, z), wrapped.
+vec3 r_value3(int x, int y, int z) {
     int n = int(N);
     uint xi = uint(wrap_mod(x, n));
     uint yi = uint(wrap_mod(y, n));
     uint zi = uint(wrap_mod(z, n));
-    return gaussian(TILE_SEED, TILE_STREAM, xi + N * (yi + N * zi));
+    uint i = xi + N * (yi + N * zi);
+    return vec3(
+        gaussian(TILE_SEED, TILE_STREAM, i),
+        gaussian(TILE_SEED, TILE_STREAM, i + N * N * N),
+        gaussian(TILE_SEED, TILE_STREAM, i + 2u * N * N * N));
 }
 
 // proctex_bake_src up-sampled along `axis` (which holds N/2 coarse samples there), at voxel c;
 // `size` is the bound volume's slice size.
-float upsample3(ivec3 c, int axis, ivec2 size) {
+vec3 upsample3(ivec3 c, int axis, ivec2 size) {
     int halfn = int(N) / 2;
     int x = c[axis];
-    float s = 0.0;
+    vec3 s = vec3(0.0);
     for (int k = x / 2; k <= x / 2 + 1; k++) {
         ivec3 q = c;
         q[axis] = wrap_mod(k, halfn);
-        s += P[x - 2 * k + 2] * texelFetch(proctex_bake_src, atlas_texel(q, size), 0).r;
+        s += P[x - 2 * k + 2] * texelFetch(proctex_bake_src, atlas_texel(q, size), 0).xyz;
     }
     return s;
 }
 
-float band3(ivec3 c) {
+vec3 band3(ivec3 c) {
     int n = int(N);
     ivec3 w = ivec3(wrap_mod(c.x, n), wrap_mod(c.y, n), wrap_mod(c.z, n));
     return r_value3(w.x, w.y, w.z) - upsample3(w, 2, ivec2(n, n));
@@ -39,7 +43,7 @@ float band3(ivec3 c) {
 void main() {
     ivec2 frag = ivec2(gl_FragCoord.xy);
     int n = int(N);
-    float s = 0.0;
+    vec3 s = vec3(0.0);
 #if PROCTEX_PASS == 1
     ivec3 v = atlas_voxel(frag, ivec2(n / 2, n));
     for (int j = -16; j < 16; j++) {
@@ -60,5 +64,5 @@ void main() {
     int o = int(TILE_ODD_OFFSET);
     s = (band3(v) + band3(v + ivec3(o)) - TILE_MEAN) * TILE_INV_SD;
 #endif
-    proctex_bake_out = vec4(s, 0.0, 0.0, 1.0);
+    proctex_bake_out = vec4(s, 0.0);
 }

@@ -72,7 +72,7 @@ float whole_period(float m, float n) {
 
 #ifdef PROCTEX_SOLID
 // The 3D tile through tile3_side / tile3_texel (tile3_atlas.glsl).
-float wavelet_noise3(vec3 p) {
+vec3 wavelet_noise3(vec3 p) {
     int ni = tile3_side();
     float nf = float(ni);
     BWeights bx = bspline_weights(wrap_coord(p.x, nf));
@@ -82,13 +82,13 @@ float wavelet_noise3(vec3 p) {
         wrap_index(bx.mid - 1, ni),
         wrap_index(bx.mid, ni),
         wrap_index(bx.mid + 1, ni));
-    float sum = 0.0;
+    vec3 sum = vec3(0.0);
     for (int dz = 0; dz < 3; dz++) {
         int slab = wrap_index(bz.mid + dz - 1, ni);
-        float plane = 0.0;
+        vec3 plane = vec3(0.0);
         for (int dy = 0; dy < 3; dy++) {
             int row = wrap_index(by.mid + dy - 1, ni);
-            float line = 0.0;
+            vec3 line = vec3(0.0);
             for (int dx = 0; dx < 3; dx++) {
                 line += bx.w[dx] * tile3_texel(ivec3(cols[dx], row, slab));
             }
@@ -101,7 +101,7 @@ float wavelet_noise3(vec3 p) {
 #else
 uniform highp sampler2D proctex_tile2;
 
-float wavelet_noise2(vec2 p) {
+vec3 wavelet_noise2(vec2 p) {
     int ni = textureSize(proctex_tile2, 0).x;
     float nf = float(ni);
     BWeights bx = bspline_weights(wrap_coord(p.x, nf));
@@ -110,12 +110,12 @@ float wavelet_noise2(vec2 p) {
         wrap_index(bx.mid - 1, ni),
         wrap_index(bx.mid, ni),
         wrap_index(bx.mid + 1, ni));
-    float sum = 0.0;
+    vec3 sum = vec3(0.0);
     for (int dy = 0; dy < 3; dy++) {
         int row = wrap_index(by.mid + dy - 1, ni);
-        float line = 0.0;
+        vec3 line = vec3(0.0);
         for (int dx = 0; dx < 3; dx++) {
-            line += bx.w[dx] * texelFetch(proctex_tile2, ivec2(cols[dx], row), 0).r;
+            line += bx.w[dx] * texelFetch(proctex_tile2, ivec2(cols[dx], row), 0).xyz;
         }
         sum += by.w[dy] * line;
     }
@@ -123,7 +123,7 @@ float wavelet_noise2(vec2 p) {
 }
 
 // One 2D band with its coefficient indices wrapped at min(period, n) per axis (seamless tiles).
-float noise2_periodic(vec2 p, vec2 period) {
+vec3 noise2_periodic(vec2 p, vec2 period) {
     float nf = float(textureSize(proctex_tile2, 0).x);
     vec2 pw = vec2(min(period.x, nf), min(period.y, nf));
     int px = int(pw.x);
@@ -134,12 +134,12 @@ float noise2_periodic(vec2 p, vec2 period) {
         wrap_period(bx.mid - 1, px),
         wrap_period(bx.mid, px),
         wrap_period(bx.mid + 1, px));
-    float sum = 0.0;
+    vec3 sum = vec3(0.0);
     for (int dy = 0; dy < 3; dy++) {
         int row = wrap_period(by.mid + dy - 1, py);
-        float line = 0.0;
+        vec3 line = vec3(0.0);
         for (int dx = 0; dx < 3; dx++) {
-            line += bx.w[dx] * texelFetch(proctex_tile2, ivec2(cols[dx], row), 0).r;
+            line += bx.w[dx] * texelFetch(proctex_tile2, ivec2(cols[dx], row), 0).xyz;
         }
         sum += by.w[dy] * line;
     }

@@ -12,7 +12,7 @@ struct Params {
     uvec4 counts;           // bands, knots, solid (0/1), histogram (0/1)
     vec4 sigma;             // sigma_M per channel
     vec4 weights[12];       // [band] -> weight of channels 0, 1, 2
-    vec4 offsets[36];       // [channel*12 + band] -> offset (x, y, z) in coefficient units
+    vec4 offsets[12];       // [band] -> offset (x, y, z) in coefficient units
     vec4 knots[33];         // [knot] -> knot value of channels 0, 1, 2
     vec4 tangents[33];      // [knot] -> Fritsch-Carlson tangent of channels 0, 1, 2
     uvec4 pattern;          // pattern kind (0: noise model), ramp stops, cell-hash seed, tone knots

@@ -65,14 +65,14 @@ float octave(vec3 q, uint k, vec2 per) {
     float f = float(1u << k);
     vec3 o = params.pattern_offsets[k].xyz;
 #ifdef PROCTEX_SOLID
-    return wavelet_noise3(vec3(q.x * f + o.x, q.y * f + o.y, q.z * f + o.z));
+    return wavelet_noise3(vec3(q.x * f + o.x, q.y * f + o.y, q.z * f + o.z)).x;
 #else
     if (per.x > 0.0) {
         float n = float(textureSize(proctex_tile2, 0).x);
         vec2 m = vec2(whole_period(per.x * f, n), whole_period(per.y * f, n));
-        return noise2_periodic(vec2(q.x / per.x * m.x + o.x, q.y / per.y * m.y + o.y), m);
+        return noise2_periodic(vec2(q.x / per.x * m.x + o.x, q.y / per.y * m.y + o.y), m).x;
     }
-    return wavelet_noise2(vec2(q.x * f + o.x, q.y * f + o.y));
+    return wavelet_noise2(vec2(q.x * f + o.x, q.y * f + o.y)).x;
 #endif
 }
 

@@ -1,5 +1,5 @@
 // The procedural texture at a point (GLSL twin of shaders/texture.wgsl; Rust twins in
-// analyzer/src/render.rs: Prepared::texel, channel_noise, colour, tone_eval, shade).
+// analyzer/src/render.rs: Prepared::texel, texture_noise, colour, tone_eval, shade).
 
 vec3 texel(vec3 world) {
     float c = params.transform.y;
@@ -11,19 +11,20 @@ vec3 texel(vec3 world) {
         world.z * inv_scale);
 }
 
-float channel_noise(int c, vec3 u, float log2_fp) {
-    float sum = 0.0;
+// The three channels' multiresolution noise: every band read once (one RGBA fetch per tap).
+vec3 texture_noise(vec3 u, float log2_fp) {
+    vec3 sum = vec3(0.0);
     for (uint j = 0u; j < params.counts.x; j++) {
-        float w = params.weights[j][c] * band_fade(j, log2_fp);
-        if (w == 0.0) {
+        vec3 w = params.weights[j].xyz * band_fade(j, log2_fp);
+        if (all(equal(w, vec3(0.0)))) {
             continue;
         }
         float f = 1.0 / float(1u << j);
-        vec3 o = params.offsets[uint(c) * uint(MAX_BANDS) + j].xyz;
+        vec3 o = params.offsets[j].xyz;
 #ifdef PROCTEX_SOLID
-        float v = wavelet_noise3(vec3(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z));
+        vec3 v = wavelet_noise3(vec3(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z));
 #else
-        float v = wavelet_noise2(vec2(u.x * f + o.x, u.y * f + o.y));
+        vec3 v = wavelet_noise2(vec2(u.x * f + o.x, u.y * f + o.y));
 #endif
         sum += w * v;
     }
@@ -78,8 +79,5 @@ vec3 shade(vec3 world, float log2_fp) {
     if (params.pattern.x != 0u) {
         base = ramp(pattern(u, log2_fp));
     }
-    return colour(vec3(
-        channel_noise(0, u, log2_fp),
-        channel_noise(1, u, log2_fp),
-        channel_noise(2, u, log2_fp)), base);
+    return colour(texture_noise(u, log2_fp), base);
 }

@@ -7,7 +7,7 @@ int tile3_side() {
     return textureSize(proctex_tile3, 0).x / ATLAS_COLUMNS;
 }
 
-float tile3_texel(ivec3 c) {
+vec3 tile3_texel(ivec3 c) {
     int n = tile3_side();
-    return texelFetch(proctex_tile3, atlas_texel(c, ivec2(n, n)), 0).r;
+    return texelFetch(proctex_tile3, atlas_texel(c, ivec2(n, n)), 0).xyz;
 }

@@ -88,13 +88,20 @@ pub const BAKE3: &str = include_str!("../bake3.wgsl");
 
 /// The constants `bake.wgsl` needs: tile side, hash seed and stream, the odd shift of the
 /// even/odd fix, and the CPU-measured normalisation (`noise::Tile::stats`).
-pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: f64, inv_sd: f64) -> String {
+pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: [f64; 3], inv_sd: [f64; 3]) -> String {
     let offset = odd_offset(n);
+    let v3 = |v: [f64; 3]| {
+        format!(
+            "vec3<f32>({:?}, {:?}, {:?})",
+            v[0] as f32, v[1] as f32, v[2] as f32
+        )
+    };
     format!(
         "const N: u32 = {n}u;\nconst TILE_SEED: u32 = {seed}u;\nconst TILE_STREAM: u32 = {stream}u;\n\
-         const TILE_ODD_OFFSET: u32 = {offset}u;\nconst TILE_MEAN: f32 = {:?};\n\
-         const TILE_INV_SD: f32 = {:?};\n",
-        mean as f32, inv_sd as f32
+         const TILE_ODD_OFFSET: u32 = {offset}u;\nconst TILE_MEAN = {};\n\
+         const TILE_INV_SD = {};\n",
+        v3(mean),
+        v3(inv_sd)
     )
 }
 
@@ -177,14 +184,26 @@ pub mod glsl {
     ];
 
     /// [`super::bake_constants`] in GLSL.
-    pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: f64, inv_sd: f64) -> String {
+    pub fn bake_constants(
+        n: u32,
+        seed: u32,
+        stream: u32,
+        mean: [f64; 3],
+        inv_sd: [f64; 3],
+    ) -> String {
+        let v3 = |v: [f64; 3]| {
+            format!(
+                "vec3({:?}, {:?}, {:?})",
+                v[0] as f32, v[1] as f32, v[2] as f32
+            )
+        };
         format!(
             "const uint N = {n}u;\nconst uint TILE_SEED = {seed}u;\nconst uint TILE_STREAM = {stream}u;\n\
-             const uint TILE_ODD_OFFSET = {}u;\nconst float TILE_MEAN = {:?};\n\
-             const float TILE_INV_SD = {:?};\n",
+             const uint TILE_ODD_OFFSET = {}u;\nconst vec3 TILE_MEAN = {};\n\
+             const vec3 TILE_INV_SD = {};\n",
             super::odd_offset(n),
-            mean as f32,
-            inv_sd as f32
+            v3(mean),
+            v3(inv_sd)
         )
     }
 }
@@ -232,11 +251,11 @@ pub fn shaders() -> Vec<(&'static str, String)> {
         ("seamless", seamless_shader()),
         (
             "bake",
-            bake_shader(&bake_constants(128, 1, 0x7431_3244, 0.01, 1.9)),
+            bake_shader(&bake_constants(128, 1, 0x7431_3244, [0.01; 3], [1.9; 3])),
         ),
         (
             "bake3",
-            bake3_shader(&bake_constants(64, 1, 0x7433_3344, 0.01, 1.9)),
+            bake3_shader(&bake_constants(64, 1, 0x7433_3344, [0.01; 3], [1.9; 3])),
         ),
         ("plane_atlas", plane_atlas_shader()),
         (
@@ -247,7 +266,7 @@ pub fn shaders() -> Vec<(&'static str, String)> {
                     "const MORPH_SEGMENT_COUNT: u32 = 1u;\n\
                      const MORPH_SEGMENTS = array<MorphSegment, 1>(MorphSegment());\n\
                      const MORPH_ENDS = array<Params, 2>(Params(), Params());\n\
-                     const MORPH_OFFSETS = array<vec4<f32>, 36>();\n\
+                     const MORPH_OFFSETS = array<vec4<f32>, 12>();\n\
                      const MORPH_SEED: u32 = 1u;\n\
                      const MORPH_PATTERN_OFFSETS = array<vec4<f32>, 5>();\n\
                      fn morph_segment(i: u32) -> MorphSegment { return MORPH_SEGMENTS[0]; }\n\

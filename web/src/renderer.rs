@@ -67,7 +67,7 @@ pub struct TextureRenderer {
     uploaded: Option<Params>,
 }
 
-/// A texture binding read with textureLoad, unfilterable: the noise tiles (r32float) and the
+/// A texture binding read with textureLoad, unfilterable: the noise tiles (rgba32float) and the
 /// view cache's image.
 pub(crate) fn tile_entry(
     binding: u32,
@@ -119,7 +119,9 @@ pub(crate) fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGr
     })
 }
 
-pub(crate) fn r32_texture(
+/// An rgba32float texture of `n × n` (× `depth`) texels from `data`, four floats per texel: the
+/// noise tiles, their three components in RGB ([`proctex::noise::Tile::rgba`]).
+pub(crate) fn rgba32_texture(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
@@ -139,7 +141,7 @@ pub(crate) fn r32_texture(
         mip_level_count: 1,
         sample_count: 1,
         dimension,
-        format: wgpu::TextureFormat::R32Float,
+        format: wgpu::TextureFormat::Rgba32Float,
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });
@@ -154,7 +156,7 @@ pub(crate) fn r32_texture(
         &bytes,
         wgpu::TexelCopyBufferLayout {
             offset: 0,
-            bytes_per_row: Some(4 * n),
+            bytes_per_row: Some(16 * n),
             rows_per_image: Some(n),
         },
         size,
@@ -315,44 +317,44 @@ impl TextureRenderer {
         // The unused dimension gets a 1-texel stand-in.
         let (t2, t3) = if params.solid {
             (
-                r32_texture(
+                rgba32_texture(
                     device,
                     queue,
                     "tile2",
                     1,
                     1,
                     wgpu::TextureDimension::D2,
-                    &[0.0],
+                    &[0.0; 4],
                 ),
-                r32_texture(
+                rgba32_texture(
                     device,
                     queue,
                     "tile3",
                     n,
                     n,
                     wgpu::TextureDimension::D3,
-                    &tile.data,
+                    &tile.rgba(),
                 ),
             )
         } else {
             (
-                r32_texture(
+                rgba32_texture(
                     device,
                     queue,
                     "tile2",
                     n,
                     1,
                     wgpu::TextureDimension::D2,
-                    &tile.data,
+                    &tile.rgba(),
                 ),
-                r32_texture(
+                rgba32_texture(
                     device,
                     queue,
                     "tile3",
                     1,
                     1,
                     wgpu::TextureDimension::D3,
-                    &[0.0],
+                    &[0.0; 4],
                 ),
             )
         };

@@ -16,7 +16,7 @@ use proctex::render::Prepared;
 use proctex::seamless::{self, Seamless, render_rows};
 
 use crate::renderer::{
-    clear_pass, full_screen_pipeline, params_layout, r32_texture, uniform_layout,
+    clear_pass, full_screen_pipeline, params_layout, rgba32_texture, uniform_layout,
 };
 
 /// Pixels per strip (the strip is `size` wide and `STRIP_PIXELS / size` rows high).
@@ -98,24 +98,24 @@ impl SeamlessGpu {
         };
         let params_buffer = uniform("seamless params", &prep.uniform_bytes());
         let seamless_buffer = uniform("seamless", &seamless.uniform_bytes(0));
-        let v2 = r32_texture(
+        let v2 = rgba32_texture(
             device,
             queue,
             "seamless tile2",
             tile.n as u32,
             1,
             wgpu::TextureDimension::D2,
-            &tile.data,
+            &tile.rgba(),
         )
         .create_view(&wgpu::TextureViewDescriptor::default());
-        let v3 = r32_texture(
+        let v3 = rgba32_texture(
             device,
             queue,
             "seamless tile3",
             1,
             1,
             wgpu::TextureDimension::D3,
-            &[0.0],
+            &[0.0; 4],
         )
         .create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D3),

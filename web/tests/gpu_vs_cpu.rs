@@ -288,7 +288,7 @@ fn solid_view_and_flat_baseline_match_cpu() {
     assert_eq!(flat, cpu, "flat baseline");
 }
 
-/// Runs one full-screen fragment pass of `module` into a new `w × h` r32float texture.
+/// Runs one full-screen fragment pass of `module` into a new `w × h` rgba32float texture.
 fn bake_pass(
     gpu: &Gpu,
     module: &wgpu::ShaderModule,
@@ -297,7 +297,7 @@ fn bake_pass(
     w: u32,
     h: u32,
 ) -> wgpu::Texture {
-    let format = wgpu::TextureFormat::R32Float;
+    let format = wgpu::TextureFormat::Rgba32Float;
     let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
         label: Some(entry),
         size: wgpu::Extent3d {
@@ -342,8 +342,9 @@ fn bake_pass(
     target
 }
 
-fn read_r32(gpu: &Gpu, t: &wgpu::Texture, w: u32, h: u32) -> Vec<f32> {
-    read_texture(gpu, t, w, h, 4)
+/// An rgba32float texture's values, four per texel.
+fn read_rgba32(gpu: &Gpu, t: &wgpu::Texture, w: u32, h: u32) -> Vec<f32> {
+    read_texture(gpu, t, w, h, 16)
         .chunks_exact(4)
         .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         .collect()
@@ -359,8 +360,8 @@ fn tile_baked_on_the_gpu_equals_the_cpu_tile() {
             n,
             seed,
             proctex::rng::stream::TILE_2D,
-            tile.stats.raw_mean,
-            1.0 / tile.stats.raw_variance.sqrt(),
+            tile.stats.map(|s| s.raw_mean),
+            tile.stats.map(|s| 1.0 / s.raw_variance.sqrt()),
         );
         let module = gpu
             .device
@@ -371,10 +372,10 @@ fn tile_baked_on_the_gpu_equals_the_cpu_tile() {
         let down_x = bake_pass(&gpu, &module, "fs_bake_down_x", None, n / 2, n);
         let down_y = bake_pass(&gpu, &module, "fs_bake_down_y", Some(&down_x), n, n / 2);
         let baked = bake_pass(&gpu, &module, "fs_bake_tile", Some(&down_y), n, n);
-        let got = read_r32(&gpu, &baked, n, n);
+        let got = read_rgba32(&gpu, &baked, n, n);
         let max = got
             .iter()
-            .zip(&tile.data)
+            .zip(&tile.rgba())
             .map(|(a, b)| (a - b).abs())
             .fold(0.0f32, f32::max);
         println!(
@@ -395,8 +396,8 @@ fn tile3_baked_on_the_gpu_equals_the_cpu_tile() {
         n,
         seed,
         proctex::rng::stream::TILE_3D,
-        tile.stats.raw_mean,
-        1.0 / tile.stats.raw_variance.sqrt(),
+        tile.stats.map(|s| s.raw_mean),
+        tile.stats.map(|s| 1.0 / s.raw_variance.sqrt()),
     );
     let module = gpu
         .device
@@ -406,7 +407,7 @@ fn tile3_baked_on_the_gpu_equals_the_cpu_tile() {
         });
     let baked = bake3(&gpu, &module, n);
     let (w, h, want) = tile.atlas();
-    let got = read_r32(&gpu, &baked, w as u32, h as u32);
+    let got = read_rgba32(&gpu, &baked, w as u32, h as u32);
     let max = got
         .iter()
         .zip(&want)

@@ -14,16 +14,16 @@ pub(super) fn glsl_host_notes_plane(n: u32) -> String {
 // This one text is five programs' shaders: insert one line after `#version` to pick the stage.
 //   `#define PROCTEX_VERTEX`  the vertex shader of every program: a full-screen triangle,
 //                             drawArrays(TRIANGLES, 0, 3) with no attributes;
-//   `#define PROCTEX_PASS 1`  bake pass 1 into an R32F target A of {h} x {n}, no textures;
-//   `#define PROCTEX_PASS 2`  bake pass 2 into an R32F target B of {n} x {h}, A bound to the
+//   `#define PROCTEX_PASS 1`  bake pass 1 into an RGBA32F target A of {h} x {n}, no textures;
+//   `#define PROCTEX_PASS 2`  bake pass 2 into an RGBA32F target B of {n} x {h}, A bound to the
 //                             sampler `proctex_bake_src`;
-//   `#define PROCTEX_PASS 3`  bake pass 3 into an R32F target T of {n} x {n}, B bound to
+//   `#define PROCTEX_PASS 3`  bake pass 3 into an RGBA32F target T of {n} x {n}, B bound to
 //                             `proctex_bake_src`;
 //   nothing                   the texture: T bound to `proctex_tile2`, one world unit (one photo
 //                             pixel) per screen pixel, y down from the top of a viewport
 //                             `proctex_height` pixels high; or call `proctex(p, pixel_size)`
 //                             from your own shader (p in world units).
-// Bake once (rendering into R32F needs EXT_color_buffer_float in WebGL2); textures are read
+// Bake once (rendering into RGBA32F needs EXT_color_buffer_float in WebGL2); textures are read
 // with texelFetch, so NEAREST filtering and no mipmaps.",
         h = n / 2
     )
@@ -38,12 +38,12 @@ pub(super) fn glsl_host_notes_solid(n: u32) -> String {
 // to pick the stage.
 //   `#define PROCTEX_VERTEX`  the vertex shader of every program: a full-screen triangle,
 //                             drawArrays(TRIANGLES, 0, 3) with no attributes;
-//   `#define PROCTEX_PASS 1`  bake pass 1 into an R32F target A of {a}, no textures;
-//   `#define PROCTEX_PASS 2`  bake pass 2 into an R32F target B of {b}, A bound to the sampler
+//   `#define PROCTEX_PASS 1`  bake pass 1 into an RGBA32F target A of {a}, no textures;
+//   `#define PROCTEX_PASS 2`  bake pass 2 into an RGBA32F target B of {b}, A bound to the sampler
 //                             `proctex_bake_src`;
-//   `#define PROCTEX_PASS 3`  bake pass 3 into an R32F target C of {b}, B bound to
+//   `#define PROCTEX_PASS 3`  bake pass 3 into an RGBA32F target C of {b}, B bound to
 //                             `proctex_bake_src`;
-//   `#define PROCTEX_PASS 4`  bake pass 4 into an R32F target T of {t}, C bound to
+//   `#define PROCTEX_PASS 4`  bake pass 4 into an RGBA32F target T of {t}, C bound to
 //                             `proctex_bake_src`;
 //   nothing                   the texture: T bound to `proctex_tile3`; shows the z = 0 slice at
 //                             one world unit (one photo pixel) per screen pixel, y down from the
@@ -51,7 +51,7 @@ pub(super) fn glsl_host_notes_solid(n: u32) -> String {
 //                             `proctex3(p, pixel_size)` (p a 3D point in world units) or
 //                             `proctex(p, pixel_size)` (the z = 0 plane) from your own shader.
 // The targets are 2D atlases of the {n}^3 noise tile's slices (8 slices per row). Bake once
-// (rendering into R32F needs EXT_color_buffer_float in WebGL2); textures are read with
+// (rendering into RGBA32F needs EXT_color_buffer_float in WebGL2); textures are read with
 // texelFetch, so NEAREST filtering and no mipmaps.",
         a = atlas_size(4 * n, n * n / 8, "x"),
         b = atlas_size(8 * n, n * n / 16, "x"),
@@ -70,7 +70,7 @@ pub(super) fn wgsl_host_notes_plane(n: u32) -> String {
     format!(
         "\
 // Proctex texture, exported by `proctex export --format wgsl` (params format proctex/1).
-// Host, once: make three r32float render targets and draw a full-screen triangle (3 vertices,
+// Host, once: make three rgba32float render targets and draw a full-screen triangle (3 vertices,
 // no buffers) into each with `vs_bake` and, in order,
 //   fs_bake_down_x into A ({h} × {n}), no bindings;
 //   fs_bake_down_y into B ({n} × {h}), A bound at @group(0) @binding(0);
@@ -87,7 +87,7 @@ pub(super) fn wgsl_host_notes_solid(n: u32) -> String {
     format!(
         "\
 // Proctex solid (3D) texture, exported by `proctex export --format wgsl` (params format
-// proctex/1). Host, once: make four r32float render targets and draw a full-screen triangle
+// proctex/1). Host, once: make four rgba32float render targets and draw a full-screen triangle
 // (3 vertices, no buffers) into each with `vs_bake` and, in order,
 //   fs_bake3_down_x into A ({a}), no bindings;
 //   fs_bake3_down_y into B ({b}), A bound at @group(0) @binding(0);

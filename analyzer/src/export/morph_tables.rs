@@ -337,7 +337,7 @@ impl MorphTables {
                  const MORPH_OFFSETS: array<vec4<f32>, {}> = {offsets};\n\
                  const MORPH_SEGMENTS: array<MorphSegment, {s}> = array<MorphSegment, {s}>(\n{}\n);\n\
                  const MORPH_ENDS: array<Params, {e}> = array<Params, {e}>(\n{}\n);\n{}",
-                3 * MAX_BANDS,
+                MAX_BANDS,
                 segments.join(",\n"),
                 ends.join(",\n"),
                 constant_selectors(lang, s, e),
@@ -349,7 +349,7 @@ impl MorphTables {
                  const vec4 MORPH_OFFSETS[{}] = {offsets};\n\
                  const MorphSegment MORPH_SEGMENTS[{s}] = MorphSegment[{s}](\n{}\n);\n\
                  const Params MORPH_ENDS[{e}] = Params[{e}](\n{}\n);\n{}",
-                3 * MAX_BANDS,
+                MAX_BANDS,
                 segments.join(",\n"),
                 ends.join(",\n"),
                 constant_selectors(lang, s, e),

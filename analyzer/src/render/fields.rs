@@ -43,9 +43,10 @@ impl Fields {
                 if structured {
                     px[0] = pattern(&prep, &tile, u, log2_fp);
                 }
-                for c in 0..3 {
-                    for j in (0..bands).filter(|&j| !faded[j]) {
-                        px[1 + c * bands + j] = band_noise(&prep, &tile, c, j, u);
+                for j in (0..bands).filter(|&j| !faded[j]) {
+                    let v = band_noise(&prep, &tile, j, u);
+                    for c in 0..3 {
+                        px[1 + c * bands + j] = v[c];
                     }
                 }
             }
@@ -102,14 +103,12 @@ fn fields_key(prep: &Prepared, width: u32, height: u32, view: &View) -> Vec<u32>
     k.extend(prep.pattern_transform.map(f32::to_bits));
     k.extend(prep.pattern_values.map(f32::to_bits));
     k.extend(prep.pattern_offsets.iter().flatten().map(|v| v.to_bits()));
-    for c in 0..3 {
-        k.extend(
-            prep.offsets[c][..prep.bands as usize]
-                .iter()
-                .flatten()
-                .map(|v| v.to_bits()),
-        );
-    }
+    k.extend(
+        prep.offsets[..prep.bands as usize]
+            .iter()
+            .flatten()
+            .map(|v| v.to_bits()),
+    );
     k
 }
 
@@ -138,8 +137,8 @@ pub fn render_with_fields(
             } else {
                 prep.mean
             };
-            let noise = |c: usize| band_sum(&prep, c, log2_fp, |j| px[1 + c * bands + j]);
-            colour(&prep, [0, 1, 2].map(noise), base)
+            let noise = band_sum(&prep, log2_fp, |j| [0, 1, 2].map(|c| px[1 + c * bands + j]));
+            colour(&prep, noise, base)
         })
         .collect();
     Image {

@@ -4,7 +4,9 @@
 //! why they live with the renderer; the families, their values and ranges are
 //! [`crate::pattern`]'s.
 
-use crate::noise::{Tile, band_fade, noise2, noise2_periodic, noise3, whole_period};
+use crate::noise::{
+    Tile, band_fade, noise2_first, noise2_periodic_first, noise3_first, whole_period,
+};
 use crate::pattern::{OCTAVES, Pattern};
 use crate::rng;
 
@@ -93,7 +95,7 @@ pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize, per: [f32; 2]
     let f = (1u32 << k) as f32;
     let o = prep.pattern_offsets[k];
     if prep.solid {
-        noise3(
+        noise3_first(
             &tile.data,
             tile.n,
             [q[0] * f + o[0], q[1] * f + o[1], q[2] * f + o[2]],
@@ -101,14 +103,14 @@ pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize, per: [f32; 2]
     } else if per[0] > 0.0 {
         let n = tile.n as f32;
         let m = [whole_period(per[0] * f, n), whole_period(per[1] * f, n)];
-        noise2_periodic(
+        noise2_periodic_first(
             &tile.data,
             tile.n,
             [q[0] / per[0] * m[0] + o[0], q[1] / per[1] * m[1] + o[1]],
             m,
         )
     } else {
-        noise2(&tile.data, tile.n, [q[0] * f + o[0], q[1] * f + o[1]])
+        noise2_first(&tile.data, tile.n, [q[0] * f + o[0], q[1] * f + o[1]])
     }
 }
 
