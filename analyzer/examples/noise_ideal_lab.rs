@@ -25,9 +25,14 @@
 //!    the deviation the tile has at each sub-texel phase (`noise::phase_variance2`), the fix
 //!    the rungs above pointed to; before that fix this ladder had it as a rung of its own.
 //!
+//! With `--bands` it runs a second ladder instead, on what finer band resolution could buy, every
+//! rung with exact histograms and random phases: the floor, then box bands of one octave, half
+//! an octave and a quarter of an octave of radial frequency, then one octave and half an octave
+//! each cut into four orientation wedges of 45°.
+//!
 //! ```text
 //! cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
-//!     ../shared/photos/dev/manifest.tsv [SEEDS]
+//!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands]
 //! ```
 
 use proctex::analyze::{Options, analyze_photo};
@@ -47,6 +52,18 @@ const RUNGS: [&str; 7] = [
     "the model, its three finest bands at unit deviation on the pixel grid",
     "the model (its bands, its knots)",
 ];
+
+const BAND_RUNGS: [&str; 6] = [
+    "floor (full spectrum, exact)",
+    "octave boxes",
+    "half-octave boxes",
+    "quarter-octave boxes",
+    "octave boxes, 4 orientations",
+    "half-octave boxes, 4 orientations",
+];
+
+/// Radial bins per octave and orientation wedges of each [`BAND_RUNGS`] rung after the floor.
+const BAND_SHAPES: [(f64, usize); 5] = [(1.0, 1), (2.0, 1), (4.0, 1), (1.0, 4), (2.0, 4)];
 
 /// The model of a patch: its prepared block, and its decorrelated channels' exact values.
 struct Model {
@@ -95,8 +112,23 @@ fn rank_match(values: &[f32], target: &[f32]) -> Vec<f32> {
 /// A Gaussian field with `chan`'s power averaged over octave rings (one box band per octave),
 /// random phases of `seed`, zero mean.
 fn octave_box_field(chan: &[f32], w: usize, h: usize, seed: u32, c: usize) -> Vec<f32> {
+    box_field(chan, w, h, seed, c, 1.0, 1)
+}
+
+/// A Gaussian field with `chan`'s power averaged over boxes of `per_octave` radial bins per
+/// octave, each cut into `wedges` orientation wedges over 180°, random phases of `seed`.
+fn box_field(
+    chan: &[f32],
+    w: usize,
+    h: usize,
+    seed: u32,
+    c: usize,
+    per_octave: f64,
+    wedges: usize,
+) -> Vec<f32> {
     let spec = spectrum_real(chan, w, h, true);
-    let ring = |i: usize| {
+    let lowest = ((w.max(h) as f64).log2() * per_octave).floor() as usize;
+    let bin = |i: usize| {
         let (kx, ky) = (i % w, i / w);
         let fx = if kx <= w / 2 {
             kx as f64
@@ -112,16 +144,19 @@ fn octave_box_field(chan: &[f32], w: usize, h: usize, seed: u32, c: usize) -> Ve
         if r == 0.0 {
             return None;
         }
-        // Octave j holds radial frequencies in (2^-(j+1), 2^-j] cycles per pixel; the lowest
-        // octave takes everything below.
-        let lowest = (w.max(h) as f64).log2().floor() as usize;
-        Some(((-r.log2()).floor().max(0.0) as usize).min(lowest))
+        // Radial bin j holds frequencies in (2^-(j+1)/k, 2^-j/k] cycles per pixel for k bins
+        // per octave; the lowest takes everything below. The wedge is the orientation modulo
+        // 180° (f and −f are one Hermitian pair).
+        let radial = ((-r.log2() * per_octave).floor().max(0.0) as usize).min(lowest);
+        let angle = fy.atan2(fx).rem_euclid(std::f64::consts::PI);
+        let wedge = ((angle / std::f64::consts::PI * wedges as f64) as usize).min(wedges - 1);
+        Some(radial * wedges + wedge)
     };
-    let rings: Vec<Option<usize>> = (0..w * h).map(ring).collect();
-    let count = rings.iter().flatten().max().map_or(0, |m| m + 1);
+    let bins_of: Vec<Option<usize>> = (0..w * h).map(bin).collect();
+    let count = bins_of.iter().flatten().max().map_or(0, |m| m + 1);
     let (mut power, mut bins) = (vec![0.0f64; count], vec![0usize; count]);
-    for (s, r) in spec.iter().zip(&rings) {
-        if let Some(j) = r {
+    for (s, b) in spec.iter().zip(&bins_of) {
+        if let Some(j) = b {
             power[*j] += s.norm_sqr() as f64;
             bins[*j] += 1;
         }
@@ -132,8 +167,8 @@ fn octave_box_field(chan: &[f32], w: usize, h: usize, seed: u32, c: usize) -> Ve
     let phases = fft2_real(&noise, w, h);
     let shaped: Vec<_> = phases
         .iter()
-        .zip(&rings)
-        .map(|(ph, r)| match r {
+        .zip(&bins_of)
+        .map(|(ph, b)| match b {
             Some(j) => {
                 let amplitude = (power[*j] / bins[*j].max(1) as f64).sqrt() as f32;
                 let m = ph.norm();
@@ -143,6 +178,29 @@ fn octave_box_field(chan: &[f32], w: usize, h: usize, seed: u32, c: usize) -> Ve
         })
         .collect();
     ifft2(shaped, w, h).iter().map(|v| v.re).collect()
+}
+
+/// Rung `rung` of the `--bands` ladder ([`BAND_RUNGS`]).
+fn synthesise_bands(rung: usize, src: &Photo, seed: u32) -> Photo {
+    if rung == 0 {
+        return random_phase(src, seed);
+    }
+    let (w, h) = (src.width, src.height);
+    let m = model_of(src, seed);
+    let (per_octave, wedges) = BAND_SHAPES[rung - 1];
+    let v = std::array::from_fn(|c| {
+        let field = box_field(
+            &m.channels[c],
+            w as usize,
+            h as usize,
+            seed,
+            c,
+            per_octave,
+            wedges,
+        );
+        rank_match(&field, &m.channels[c])
+    });
+    to_rgb(&m, &v, w, h)
 }
 
 /// Decorrelated channel values back to RGB about the model's mean.
@@ -309,9 +367,12 @@ fn mean_se(v: &[f64]) -> (f64, f64) {
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let manifest = args.first().expect("MANIFEST.tsv");
+    let all: Vec<String> = std::env::args().skip(1).collect();
+    let bands = all.iter().any(|a| a == "--bands");
+    let args: Vec<&String> = all.iter().filter(|a| *a != "--bands").collect();
+    let manifest = *args.first().expect("MANIFEST.tsv");
     let seeds: Vec<u32> = (1..=args.get(1).map_or(2, |s| s.parse().unwrap())).collect();
+    let names: &[&str] = if bands { &BAND_RUNGS } else { &RUNGS };
     let dir = std::path::Path::new(manifest).parent().unwrap();
     let entries = parse_manifest(&std::fs::read_to_string(manifest).unwrap()).unwrap();
     let photos: Vec<_> = entries
@@ -320,13 +381,17 @@ fn main() {
         .collect();
     // Per rung: per photo (spectrum, colour, structure, overall); and the differences from the
     // previous rung per photo.
-    let mut table: Vec<Vec<[f64; 4]>> = vec![Vec::new(); RUNGS.len()];
+    let mut table: Vec<Vec<[f64; 4]>> = vec![Vec::new(); names.len()];
     for e in &photos {
         let photo = Photo::decode(&std::fs::read(dir.join(&e.file)).unwrap()).unwrap();
         let mut line = format!("{:<36}", e.file);
         for (rung, rows) in table.iter_mut().enumerate() {
             let f: Fidelity = fidelity_with(&photo, &seeds, &mut |src, seed| {
-                Ok(synthesise(rung, src, seed))
+                Ok(if bands {
+                    synthesise_bands(rung, src, seed)
+                } else {
+                    synthesise(rung, src, seed)
+                })
             })
             .unwrap();
             let r = [
@@ -407,7 +472,7 @@ fn main() {
         };
         println!(
             "| {} | {} | {} | {} | {} | {step} |",
-            RUNGS[rung],
+            names[rung],
             cell(0),
             cell(1),
             cell(2),

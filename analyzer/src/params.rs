@@ -227,8 +227,10 @@ impl Model {
     }
 }
 
-/// Lagae's model: for each decorrelated channel `c`, `M_c(u) = Σ_j w_cj N(u·2^−j + o_cj)`,
-/// optionally mapped through the channel's inverse CDF.
+/// Lagae's model: for each decorrelated channel `c`, `M_c(u) = Σ_j w_cj N_c(u·2^−j + o_j)`,
+/// optionally mapped through the channel's inverse CDF. (Lagae draws each channel's band from
+/// one noise at its own offset `o_cj`; here channel `c` reads the tile's own component `N_c` at
+/// the band's offset: independent fields all the same, one texture fetch for all three.)
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NoiseModel {
