@@ -22,6 +22,9 @@ struct Params {
     // [band] → offset (x, y, z) in coefficient units (the three channels read their own tile
     // components at one point)
     offsets: array<vec4<f32>, 12>,
+    // [band] → mixing of the band and its derivative (α, β·dx, β·dy; (1, 0, 0): isotropic),
+    // shared by the channels (analyzer/src/noise/oriented.rs)
+    orient: array<vec4<f32>, 12>,
     // [knot] → knot value of channels 0, 1, 2
     knots: array<vec4<f32>, 33>,
     // [knot] → Fritsch–Carlson tangent of channels 0, 1, 2

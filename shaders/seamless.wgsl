@@ -25,7 +25,15 @@ fn texture_noise_wrapped(a: vec2<f32>) -> vec3<f32> {
         }
         let m = seamless.periods[j / 4u][j % 4u];
         let o = params.offsets[j].xyz;
-        sum += w * noise2_periodic(vec2<f32>(a.x * m + o.x, a.y * m + o.y), vec2<f32>(m, m));
+        let p = vec2<f32>(a.x * m + o.x, a.y * m + o.y);
+        let mix = params.orient[j].xyz;
+        var v: vec3<f32>;
+        if (mix.y == 0.0 && mix.z == 0.0) {
+            v = noise2_periodic(p, vec2<f32>(m, m));
+        } else {
+            v = noise2_periodic_oriented(p, vec2<f32>(m, m), mix);
+        }
+        sum += w * v;
     }
     return sum;
 }

@@ -23,11 +23,23 @@ fn texture_noise(u: vec3<f32>, log2_fp: f32) -> vec3<f32> {
         }
         let f = 1.0 / f32(1u << j);
         let o = params.offsets[j].xyz;
+        let m = params.orient[j].xyz;
+        let isotropic = m.y == 0.0 && m.z == 0.0;
         var v: vec3<f32>;
         if (params.counts.z != 0u) {
-            v = noise3(vec3<f32>(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z));
+            let p = vec3<f32>(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z);
+            if (isotropic) {
+                v = noise3(p);
+            } else {
+                v = noise3_oriented(p, m);
+            }
         } else {
-            v = noise2(vec2<f32>(u.x * f + o.x, u.y * f + o.y));
+            let p = vec2<f32>(u.x * f + o.x, u.y * f + o.y);
+            if (isotropic) {
+                v = noise2(p);
+            } else {
+                v = noise2_oriented(p, m);
+            }
         }
         sum += w * v;
     }

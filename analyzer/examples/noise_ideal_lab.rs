@@ -62,6 +62,16 @@ const BAND_RUNGS: [&str; 6] = [
     "half-octave boxes, 4 orientations",
 ];
 
+/// The `--orient` ladder: what one orientation profile per octave, shared by the three
+/// channels, could buy against free wedges (every rung with exact histograms, random phases).
+const ORIENT_RUNGS: [&str; 5] = [
+    "floor (full spectrum, exact)",
+    "octave boxes",
+    "octave boxes, 4 orientations",
+    "octave boxes, shared profile 1 + s·cos 2(θ−θ0)",
+    "octave boxes, shared profile exp(κ·cos 2(θ−θ0))",
+];
+
 /// Radial bins per octave and orientation wedges of each [`BAND_RUNGS`] rung after the floor.
 const BAND_SHAPES: [(f64, usize); 5] = [(1.0, 1), (2.0, 1), (4.0, 1), (1.0, 4), (2.0, 4)];
 
@@ -178,6 +188,162 @@ fn box_field(
         })
         .collect();
     ifft2(shaped, w, h).iter().map(|v| v.re).collect()
+}
+
+/// An orientation profile per octave, fitted from the octave's angular moment
+/// `c2 = Σ P(f)·e^{2iθ} / Σ P(f)` over the three channels' power.
+#[derive(Clone, Copy)]
+enum Profile {
+    /// `1 + s·cos 2(θ−θ0)`, `s = min(2|c2|, 1)` (its own moment is `s/2`): what one directional
+    /// derivative of a band mixed with the band gives.
+    Cosine,
+    /// `exp(κ·cos 2(θ−θ0))` with `I1(κ)/I0(κ) = |c2|`: a narrow profile of the same moment.
+    VonMises,
+}
+
+/// `I1(κ)/I0(κ)` by the series of both.
+fn bessel_ratio(k: f64) -> f64 {
+    let (mut i0, mut i1, mut term0, mut term1) = (0.0, 0.0, 1.0, k / 2.0);
+    for m in 0..200 {
+        i0 += term0;
+        i1 += term1;
+        let m = m as f64;
+        term0 *= (k / 2.0).powi(2) / ((m + 1.0) * (m + 1.0));
+        term1 *= (k / 2.0).powi(2) / ((m + 1.0) * (m + 2.0));
+    }
+    i1 / i0
+}
+
+/// The three channels' Gaussian fields with octave-box power shaped by one orientation profile
+/// per octave, shared by the channels.
+fn profiled_fields(
+    chans: &[Vec<f32>; 3],
+    w: usize,
+    h: usize,
+    seed: u32,
+    kind: Profile,
+) -> [Vec<f32>; 3] {
+    let specs: Vec<_> = chans.iter().map(|c| spectrum_real(c, w, h, true)).collect();
+    let lowest = (w.max(h) as f64).log2().floor() as usize;
+    let freq = |i: usize| {
+        let (kx, ky) = (i % w, i / w);
+        let fx = if kx <= w / 2 {
+            kx as f64
+        } else {
+            kx as f64 - w as f64
+        } / w as f64;
+        let fy = if ky <= h / 2 {
+            ky as f64
+        } else {
+            ky as f64 - h as f64
+        } / h as f64;
+        (fx, fy)
+    };
+    let octave_of: Vec<Option<(usize, f64)>> = (0..w * h)
+        .map(|i| {
+            let (fx, fy) = freq(i);
+            let r = (fx * fx + fy * fy).sqrt();
+            (r > 0.0).then(|| {
+                (
+                    ((-r.log2()).floor().max(0.0) as usize).min(lowest),
+                    fy.atan2(fx),
+                )
+            })
+        })
+        .collect();
+    let mut moment = vec![(0.0f64, 0.0f64, 0.0f64); lowest + 1];
+    for spec in &specs {
+        for (s, o) in spec.iter().zip(&octave_of) {
+            if let Some((j, a)) = o {
+                let p = s.norm_sqr() as f64;
+                moment[*j].0 += p * (2.0 * a).cos();
+                moment[*j].1 += p * (2.0 * a).sin();
+                moment[*j].2 += p;
+            }
+        }
+    }
+    let shape: Vec<Box<dyn Fn(f64) -> f64>> = moment
+        .iter()
+        .map(|&(c, s, p)| {
+            let (c, s) = if p > 0.0 { (c / p, s / p) } else { (0.0, 0.0) };
+            let r = (c * c + s * s).sqrt();
+            let theta0 = s.atan2(c) / 2.0;
+            let f: Box<dyn Fn(f64) -> f64> = match kind {
+                Profile::Cosine => {
+                    let strength = (2.0 * r).min(1.0);
+                    Box::new(move |a: f64| 1.0 + strength * (2.0 * (a - theta0)).cos())
+                }
+                Profile::VonMises => {
+                    let (mut lo, mut hi) = (0.0, 500.0);
+                    for _ in 0..60 {
+                        let mid = 0.5 * (lo + hi);
+                        if bessel_ratio(mid) < r.min(0.995) {
+                            lo = mid
+                        } else {
+                            hi = mid
+                        }
+                    }
+                    let kappa = 0.5 * (lo + hi);
+                    Box::new(move |a: f64| (kappa * ((2.0 * (a - theta0)).cos() - 1.0)).exp())
+                }
+            };
+            f
+        })
+        .collect();
+    // The profile's mean over each octave's bins, so that it moves power within the octave only.
+    let mut mean_shape = vec![(0.0f64, 0usize); lowest + 1];
+    for o in octave_of.iter().flatten() {
+        mean_shape[o.0].0 += shape[o.0](o.1);
+        mean_shape[o.0].1 += 1;
+    }
+    std::array::from_fn(|c| {
+        let mut power = vec![0.0f64; lowest + 1];
+        for (s, o) in specs[c].iter().zip(&octave_of) {
+            if let Some((j, _)) = o {
+                power[*j] += s.norm_sqr() as f64;
+            }
+        }
+        let noise: Vec<f32> = (0..w * h)
+            .map(|i| rng::gaussian(seed, 0x6f63_7462 + c as u32, i as u32) as f32)
+            .collect();
+        let phases = fft2_real(&noise, w, h);
+        let shaped: Vec<_> = phases
+            .iter()
+            .zip(&octave_of)
+            .map(|(ph, o)| match o {
+                Some((j, a)) => {
+                    let (sum, n) = mean_shape[*j];
+                    let g = shape[*j](*a) / (sum / n as f64).max(1e-300);
+                    let amplitude = (power[*j] / n as f64 * g).sqrt() as f32;
+                    let m = ph.norm();
+                    if m > 0.0 { ph * (amplitude / m) } else { *ph }
+                }
+                None => ph * 0.0,
+            })
+            .collect();
+        ifft2(shaped, w, h).iter().map(|v| v.re).collect()
+    })
+}
+
+/// Rung `rung` of the `--orient` ladder ([`ORIENT_RUNGS`]).
+fn synthesise_orient(rung: usize, src: &Photo, seed: u32) -> Photo {
+    match rung {
+        0 => random_phase(src, seed),
+        1 => synthesise_bands(1, src, seed),
+        2 => synthesise_bands(4, src, seed),
+        _ => {
+            let (w, h) = (src.width, src.height);
+            let m = model_of(src, seed);
+            let kind = if rung == 3 {
+                Profile::Cosine
+            } else {
+                Profile::VonMises
+            };
+            let fields = profiled_fields(&m.channels, w as usize, h as usize, seed, kind);
+            let v = std::array::from_fn(|c| rank_match(&fields[c], &m.channels[c]));
+            to_rgb(&m, &v, w, h)
+        }
+    }
 }
 
 /// Rung `rung` of the `--bands` ladder ([`BAND_RUNGS`]).
@@ -369,10 +535,17 @@ fn mean_se(v: &[f64]) -> (f64, f64) {
 fn main() {
     let all: Vec<String> = std::env::args().skip(1).collect();
     let bands = all.iter().any(|a| a == "--bands");
-    let args: Vec<&String> = all.iter().filter(|a| *a != "--bands").collect();
+    let orient = all.iter().any(|a| a == "--orient");
+    let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
     let manifest = *args.first().expect("MANIFEST.tsv");
     let seeds: Vec<u32> = (1..=args.get(1).map_or(2, |s| s.parse().unwrap())).collect();
-    let names: &[&str] = if bands { &BAND_RUNGS } else { &RUNGS };
+    let names: &[&str] = if orient {
+        &ORIENT_RUNGS
+    } else if bands {
+        &BAND_RUNGS
+    } else {
+        &RUNGS
+    };
     let dir = std::path::Path::new(manifest).parent().unwrap();
     let entries = parse_manifest(&std::fs::read_to_string(manifest).unwrap()).unwrap();
     let photos: Vec<_> = entries
@@ -387,7 +560,9 @@ fn main() {
         let mut line = format!("{:<36}", e.file);
         for (rung, rows) in table.iter_mut().enumerate() {
             let f: Fidelity = fidelity_with(&photo, &seeds, &mut |src, seed| {
-                Ok(if bands {
+                Ok(if orient {
+                    synthesise_orient(rung, src, seed)
+                } else if bands {
                     synthesise_bands(rung, src, seed)
                 } else {
                     synthesise(rung, src, seed)

@@ -14,10 +14,11 @@ use rustfft::num_complex::Complex32;
 
 use crate::histogram::{ChannelStats, RANK_BINS, RankMap};
 use crate::input::{Crop, Photo};
+use crate::orientation;
 use crate::params::{
     Colour, FORMAT, Histogram, MAX_KNOTS, Model, NoiseModel, Params, Source, Transform,
 };
-use crate::spectrum::{Estimator, band_powers_packed, estimate_weights, num_bands};
+use crate::spectrum::{Estimator, band_spectra_packed, estimate_weights, num_bands};
 
 /// Analysis options (the CLI flags of `proctex analyze`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,6 +37,10 @@ pub struct Options {
     pub estimator: Estimator,
     /// Periodic + smooth decomposition before the FFT.
     pub periodic: bool,
+    /// Fit each band's orientation ([`crate::orientation`]); off (the default until the
+    /// ranking's constants are chosen again with it and morphs of strongly oriented bands are
+    /// smooth): every band isotropic, as in Lagae et al.
+    pub orientation: bool,
 }
 
 impl Default for Options {
@@ -48,6 +53,7 @@ impl Default for Options {
             seed: 1,
             estimator: Estimator::Deconvolved,
             periodic: true,
+            orientation: false,
         }
     }
 }
@@ -243,10 +249,26 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
     drop(bins);
 
     let nb = num_bands(w, h);
-    let [p0, p1] = band_powers_packed(pair, w, h, nb, opts.periodic);
-    let [p2, _] = band_powers_packed(single, w, h, nb, opts.periodic);
+    let ([p0, p1], [m0, m1]) = band_spectra_packed(pair, w, h, nb, opts.periodic);
+    let ([p2, _], [m2, _]) = band_spectra_packed(single, w, h, nb, opts.periodic);
     let band_powers = [p0, p1, p2];
     let weights = [0, 1, 2].map(|c| estimate_weights(&band_powers[c], opts.estimator));
+    // The channels' powers weighted by their variances (Gaussianised channels have unit
+    // variance; raw ones carry theirs already).
+    let variance_weight = if opts.histogram {
+        channel_variance
+    } else {
+        [1.0; 3]
+    };
+    let orientation = if opts.orientation {
+        orientation::fit(
+            &[&band_powers[0], &band_powers[1], &band_powers[2]],
+            &[&m0, &m1, &m2],
+            &variance_weight,
+        )
+    } else {
+        Vec::new()
+    };
 
     let params = Params {
         format: FORMAT.into(),
@@ -267,6 +289,7 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
                 enabled: opts.histogram,
                 knots,
             },
+            orientation,
         }),
         source: None,
     };

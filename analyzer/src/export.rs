@@ -91,6 +91,7 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
         MAX_BANDS,
     );
     let offsets = offsets_array(p, lang);
+    let orient = lang.array(p.orient.iter().map(|m| [m[0], m[1], m[2], 0.0]), MAX_BANDS);
     let knots = lang.array(
         (0..MAX_KNOTS).map(|k| {
             [
@@ -126,7 +127,7 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
     let (tone_knots, tone_tangents) = (tone_array(&p.tone_knots), tone_array(&p.tone_tangents));
     // WGSL allows a trailing comma in a constructor; GLSL does not.
     format!(
-        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {knots},\n    {tangents},\n    {},\n    {},\n    {values},\n    {octaves},\n    {ramp},\n    {tone_range},\n    {tone_knots},\n    {tone_tangents}\n)",
+        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {orient},\n    {knots},\n    {tangents},\n    {},\n    {},\n    {values},\n    {octaves},\n    {ramp},\n    {tone_range},\n    {tone_knots},\n    {tone_tangents}\n)",
         lang.vec4([p.mean[0], p.mean[1], p.mean[2], p.contrast]),
         lang.vec4([p.inv_scale, p.rot[0], p.rot[1], 0.0]),
         lang.uvec4([p.bands, p.knots, p.solid as u32, p.histogram as u32]),

@@ -36,6 +36,7 @@ pub mod specks;
 
 // Layer: the noise model's analysis (Lagae: colour, histogram, spectrum).
 pub mod analyze;
+pub mod orientation;
 pub mod spectrum;
 
 // Layer: raster synthesis from the photo itself (Heeger & Bergen: steerable pyramid,

@@ -563,5 +563,7 @@ pub fn band_fade(band: u32, log2_footprint: f32) -> f32 {
     (1.0 - (log2_footprint - band as f32)).clamp(0.0, 1.0)
 }
 
+pub mod oriented;
+
 #[cfg(test)]
 mod tests;

@@ -238,6 +238,25 @@ pub struct NoiseModel {
     pub weights: [Vec<f32>; 3],
     /// Histogram matching.
     pub histogram: Histogram,
+    /// Per band (finest first), shared by the three channels: the orientation of its features
+    /// ([`crate::noise::oriented`]). Empty: every band isotropic (documents from before it
+    /// load unchanged); otherwise one entry per band.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub orientation: Vec<BandOrientation>,
+}
+
+/// The orientation of one band: its power follows `1 + s·cos 2(θ − θ₀)` with `θ₀` across the
+/// streaks, so that features stretch along `angle_deg`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BandOrientation {
+    /// Direction the features run along, degrees in texel coordinates (the sense of
+    /// [`Transform::rotation_deg`]), in `[−360, 360]`; analysis writes `[0, 180)`. Angles
+    /// 180° apart give the same streaks, as another realisation (the band's derivative
+    /// changes sign), so sliders and morphs turn them continuously.
+    pub angle_deg: f32,
+    /// 0: isotropic; 1: all of the band's power across the streaks (a `cos²` profile).
+    pub strength: f32,
 }
 
 /// Histogram matching: inverse CDF knots per channel at probabilities `Φ(−2.5 + 5j/K)` (see
@@ -404,6 +423,14 @@ impl NoiseModel {
         })
     }
 
+    /// Band `j`'s orientation (isotropic when none is stored).
+    pub fn band_orientation(&self, j: usize) -> BandOrientation {
+        self.orientation.get(j).copied().unwrap_or(BandOrientation {
+            angle_deg: 0.0,
+            strength: 0.0,
+        })
+    }
+
     fn validate(&self, at: &str) -> Result<()> {
         let nb = self.weights[0].len();
         for c in 0..3 {
@@ -427,6 +454,29 @@ impl NoiseModel {
             for (j, &v) in w.iter().enumerate() {
                 check_range(&format!("{at}.weights[{c}][{j}]"), v, 0.0, 4.0)?;
             }
+        }
+        if !self.orientation.is_empty() && self.orientation.len() != nb {
+            return Err(Error::params(
+                format!("{at}.orientation"),
+                format!(
+                    "has {} bands but the weights have {nb}; give one entry per band or none",
+                    self.orientation.len()
+                ),
+            ));
+        }
+        for (j, o) in self.orientation.iter().enumerate() {
+            check_range(
+                &format!("{at}.orientation[{j}].angle_deg"),
+                o.angle_deg,
+                -360.0,
+                360.0,
+            )?;
+            check_range(
+                &format!("{at}.orientation[{j}].strength"),
+                o.strength,
+                0.0,
+                1.0,
+            )?;
         }
         let nk = self.histogram.knots[0].len();
         for c in 0..3 {
@@ -556,6 +606,7 @@ pub fn pattern_shell(pattern: Pattern, seed: u32, solid: bool) -> Params {
                     enabled: false,
                     knots: [vec![0.0, 0.0], vec![0.0, 0.0], vec![0.0, 0.0]],
                 },
+                orientation: Vec::new(),
             },
             tone: None,
         }),

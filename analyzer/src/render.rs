@@ -11,6 +11,9 @@
 //! RGB and add the mean.
 
 use crate::histogram::{fc_tangents, knot_coordinate, spline_eval};
+use crate::noise::oriented::{
+    gradient_variance2, gradient_variance3, mixing, noise2_oriented, noise3_oriented,
+};
 use crate::noise::{TILE_2D, TILE_3D, Tile, band_fade, noise2, noise3};
 use crate::params::{MAX_BANDS, MAX_KNOTS, MAX_TONE_KNOTS, Model, Params};
 use crate::pattern::{MAX_STOPS, MAX_VALUES, OCTAVES};
@@ -43,6 +46,9 @@ pub struct Prepared {
     /// Band offsets in coefficient units (x, y, z), one per band: the three channels read
     /// their own tile components at the same point.
     pub offsets: [[f32; 3]; MAX_BANDS],
+    /// Per band the mixing of the band and its derivative, `[α, β·dx, β·dy]`
+    /// ([`crate::noise::oriented::mixing`]); `[1, 0, 0]` for an isotropic band.
+    pub orient: [[f32; 3]; MAX_BANDS],
     /// Per channel knot values.
     pub knot_values: [[f32; MAX_KNOTS]; 3],
     /// Per channel Fritsch–Carlson tangents.
@@ -87,6 +93,7 @@ impl Prepared {
             basis: params.colour.basis,
             weights: [[0.0; MAX_BANDS]; 3],
             offsets: [[0.0; 3]; MAX_BANDS],
+            orient: [[1.0, 0.0, 0.0]; MAX_BANDS],
             knot_values: [[0.0; MAX_KNOTS]; 3],
             tangents: [[0.0; MAX_KNOTS]; 3],
             sigma: model.sigma(),
@@ -132,6 +139,16 @@ impl Prepared {
         for j in 0..MAX_BANDS {
             p.offsets[j] = band_offset(params.seed, j).map(|f| offset_coeffs(f, tile_n));
         }
+        let grad_var = if params.solid {
+            gradient_variance3()
+        } else {
+            gradient_variance2()
+        };
+        for (j, o) in model.orientation.iter().enumerate().take(MAX_BANDS) {
+            if o.strength > 0.0 {
+                p.orient[j] = mixing(o.angle_deg, o.strength, grad_var);
+            }
+        }
         for c in 0..3 {
             for (j, &w) in model.weights[c].iter().enumerate().take(MAX_BANDS) {
                 p.weights[c][j] = w;
@@ -148,6 +165,7 @@ impl Prepared {
     pub const UNIFORM_SIZE: usize = 16
         * (7 + MAX_BANDS
             + MAX_BANDS
+            + MAX_BANDS
             + 2 * MAX_KNOTS
             + 4
             + OCTAVES
@@ -157,7 +175,7 @@ impl Prepared {
 
     /// The GPU uniform block, little-endian, laid out as `struct Params` in
     /// `shaders/params.wgsl` (every field a vec4): (mean, contrast), basis rows, (1/scale, cos, sin),
-    /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[band],
+    /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[band], orient[band],
     /// knots[k], tangents[k], then the pattern: (kind, stops, seed, 0) as u32, its transform,
     /// its 8 values, its octave offsets, the ramp stops (RGB, at), and the output tone curve:
     /// `lo`, `1 / (hi − lo)`, knots[k], tangents[k].
@@ -194,6 +212,9 @@ impl Prepared {
         }
         for o in self.offsets {
             g4([o[0], o[1], o[2], 0.0]);
+        }
+        for m in self.orient {
+            g4([m[0], m[1], m[2], 0.0]);
         }
         for k in 0..MAX_KNOTS {
             g4([
@@ -340,14 +361,22 @@ pub(crate) fn band_sum(
 pub(crate) fn band_noise(prep: &Prepared, tile: &Tile, j: usize, u: [f32; 3]) -> [f32; 3] {
     let f = 1.0 / (1u32 << j) as f32;
     let o = prep.offsets[j];
+    let m = prep.orient[j];
+    let isotropic = m[1] == 0.0 && m[2] == 0.0;
     if prep.solid {
-        noise3(
-            &tile.data,
-            tile.n,
-            [u[0] * f + o[0], u[1] * f + o[1], u[2] * f + o[2]],
-        )
+        let p = [u[0] * f + o[0], u[1] * f + o[1], u[2] * f + o[2]];
+        if isotropic {
+            noise3(&tile.data, tile.n, p)
+        } else {
+            noise3_oriented(&tile.data, tile.n, p, m)
+        }
     } else {
-        noise2(&tile.data, tile.n, [u[0] * f + o[0], u[1] * f + o[1]])
+        let p = [u[0] * f + o[0], u[1] * f + o[1]];
+        if isotropic {
+            noise2(&tile.data, tile.n, p)
+        } else {
+            noise2_oriented(&tile.data, tile.n, p, m)
+        }
     }
 }
 

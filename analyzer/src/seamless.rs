@@ -16,8 +16,10 @@
 //!   stretch only for bands whose features are about as big as the tile.
 //! - Bands coarser than the tile wrap at one or two coefficients: over a tile they are nearly
 //!   constant, as they are over any crop of that size of the infinite texture.
-//! - Rotation is ignored (the noise is isotropic: rotating it only picks another realisation,
-//!   and a rotated lattice cannot repeat along the image axes).
+//! - Rotation is ignored (an isotropic band rotated only picks another realisation, and a
+//!   rotated lattice cannot repeat along the image axes): oriented bands show their streaks at
+//!   their texel angles, as the texture does at rotation 0. A structured model's residual keeps
+//!   its texel angles too, also where its pattern is moved to a quarter turn (below).
 //! - A solid (3D) texture's tile is its plane texture (the 2D noise of the same seed and params).
 //!
 //! Structured models (ours; neither paper makes tiles of them): the pattern's total rotation
@@ -33,6 +35,7 @@
 //! nearest multiple of 1 / rows.
 
 use crate::error::{Error, Result};
+use crate::noise::oriented::noise2_periodic_oriented;
 use crate::noise::{Tile, band_fade, noise2_periodic};
 use crate::params::{MAX_BANDS, Params};
 use crate::render::pattern::{pattern_at, ramp};
@@ -157,12 +160,13 @@ pub fn texture_noise_wrapped(prep: &Prepared, tile: &Tile, s: &Seamless, a: [f32
         }
         let m = s.periods[j];
         let o = prep.offsets[j];
-        let v = noise2_periodic(
-            &tile.data,
-            tile.n,
-            [a[0] * m + o[0], a[1] * m + o[1]],
-            [m, m],
-        );
+        let p = [a[0] * m + o[0], a[1] * m + o[1]];
+        let mix = prep.orient[j];
+        let v = if mix[1] == 0.0 && mix[2] == 0.0 {
+            noise2_periodic(&tile.data, tile.n, p, [m, m])
+        } else {
+            noise2_periodic_oriented(&tile.data, tile.n, p, [m, m], mix)
+        };
         for c in 0..3 {
             sum[c] += w[c] * v[c];
         }

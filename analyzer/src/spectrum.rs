@@ -292,7 +292,44 @@ pub fn band_powers_packed(
     nb: usize,
     periodic: bool,
 ) -> [Vec<f64>; 2] {
+    let (p, _) = band_spectra_packed(packed, w, h, nb, periodic);
+    p
+}
+
+/// Per band, the angular moment of one image's power: `cos` and `sin` are `Σ P·cos 2θ` and
+/// `Σ P·sin 2θ` over the band's frequencies (`θ` the frequency's direction in texel
+/// coordinates, each conjugate pair once with its multiplicity, as the powers), `square`
+/// `Σ P²` likewise: what the orientation fit needs ([`crate::orientation`]). Same units as
+/// the powers.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BandMoments {
+    pub cos: Vec<f64>,
+    pub sin: Vec<f64>,
+    pub square: Vec<f64>,
+}
+
+/// [`band_powers_packed`] with both images' [`BandMoments`].
+pub fn band_spectra_packed(
+    packed: Vec<Complex32>,
+    w: usize,
+    h: usize,
+    nb: usize,
+    periodic: bool,
+) -> ([Vec<f64>; 2], [BandMoments; 2]) {
     let spec = spectrum(packed, w, h, periodic);
+    let signed_sq = |k: usize, n: usize| {
+        let f = k.min(n - k) as f32 / n as f32;
+        f * f
+    };
+    let fy2: Vec<f32> = (0..h).map(|r| signed_sq(r, h)).collect();
+    let fy: Vec<f32> = (0..h)
+        .map(|r| if r <= h / 2 { r as f32 } else { r as f32 - h as f32 } / h as f32)
+        .collect();
+    let mut moments: [BandMoments; 2] = std::array::from_fn(|_| BandMoments {
+        cos: vec![0.0; nb],
+        sin: vec![0.0; nb],
+        square: vec![0.0; nb],
+    });
     let bx = axis_bands(w, nb);
     let by = axis_bands(h, nb);
     let mut p = [vec![0.0f64; nb], vec![0.0f64; nb]];
@@ -301,8 +338,11 @@ pub fn band_powers_packed(
         let self_row = qm == q;
         let (row, mirror) = (&spec[q * h..(q + 1) * h], &spec[qm * h..(qm + 1) * h]);
         let bq = bx[q];
+        let fx = q as f32 / w as f32;
+        let fx2 = signed_sq(q, w);
         // Accumulate a row in f32 per band, then add to the f64 totals.
         let mut acc = [[0.0f32; MAX_BANDS]; 2];
+        let mut mom = [[[0.0f32; MAX_BANDS]; 3]; 2];
         for r in 0..h {
             let rm = if r == 0 { 0 } else { h - r };
             // Each unordered pair {(q, r), (−q, −r)} once, with its multiplicity.
@@ -319,12 +359,25 @@ pub fn band_powers_packed(
             }
             let z = row[r];
             let zm = mirror[rm].conj();
-            acc[0][band] += mult * (z + zm).norm_sqr();
-            acc[1][band] += mult * (z - zm).norm_sqr();
+            let pa = (z + zm).norm_sqr();
+            let pb = (z - zm).norm_sqr();
+            acc[0][band] += mult * pa;
+            acc[1][band] += mult * pb;
+            // cos 2θ and sin 2θ of frequency (fx, fy), the same for its conjugate.
+            let f2 = fx2 + fy2[r];
+            let (c2, s2) = ((fx2 - fy2[r]) / f2, 2.0 * fx * fy[r] / f2);
+            for (m, pw) in mom.iter_mut().zip([pa, pb]) {
+                m[0][band] += mult * pw * c2;
+                m[1][band] += mult * pw * s2;
+                m[2][band] += mult * pw * pw;
+            }
         }
         for c in 0..2 {
             for j in 0..nb {
                 p[c][j] += acc[c][j] as f64;
+                moments[c].cos[j] += mom[c][0][j] as f64;
+                moments[c].sin[j] += mom[c][1][j] as f64;
+                moments[c].square[j] += mom[c][2][j] as f64;
             }
         }
     }
@@ -332,7 +385,14 @@ pub fn band_powers_packed(
     for v in p.iter_mut().flatten() {
         *v /= norm;
     }
-    p
+    for m in &mut moments {
+        for j in 0..nb {
+            m.cos[j] /= norm;
+            m.sin[j] /= norm;
+            m.square[j] /= norm * norm;
+        }
+    }
+    (p, moments)
 }
 
 /// Band powers of one real image.
@@ -452,6 +512,7 @@ pub fn measure_leakage(size: usize, seeds: &[u32]) -> Vec<Vec<f64>> {
                         enabled: false,
                         knots: [vec![0.0, 1.0], vec![0.0, 1.0], vec![0.0, 1.0]],
                     },
+                    orientation: Vec::new(),
                 }),
                 source: None,
             };

@@ -9,6 +9,7 @@ struct MorphKey {
     vec4 quat;          // the colour basis as a unit quaternion (w, x, y, z)
     vec4 pose;          // ln(scale), rotation (degrees), turn to the other end (degrees)
     vec4 weights[12];   // [band] -> weight of channels 0, 1, 2
+    vec4 orient[12];    // [band] -> sqrt(strength), streak angle (degrees), turn to the other end
     vec4 knots[33];     // [knot] -> inverse-CDF knot of channels 0, 1, 2 (segment's count)
 };
 
@@ -159,6 +160,11 @@ void morph_structure(MorphStructure st, float u, inout Params p) {
     lerp_tones(st, u, p);
 }
 
+// Defined in noise.glsl, which the export places after this file.
+float gradient_variance2();
+float gradient_variance3();
+vec3 mixing(float angle_deg, float strength, float grad_var);
+
 Params morph(MorphSegment seg, float t) {
     MorphKey a = seg.a;
     MorphKey b = seg.b;
@@ -178,6 +184,15 @@ Params morph(MorphSegment seg, float t) {
     }
     p.sigma = sqrt(energy);
     p.offsets = MORPH_OFFSETS;
+    float grad_var = seg.counts.z != 0u ? gradient_variance3() : gradient_variance2();
+    for (int j = 0; j < MAX_BANDS; j++) {
+        float r = a.orient[j].x + t * (b.orient[j].x - a.orient[j].x);
+        float s = clamp(r * r, 0.0, 1.0);
+        p.orient[j] = vec4(1.0, 0.0, 0.0, 0.0);
+        if (s > 0.0) {
+            p.orient[j] = vec4(mixing(a.orient[j].y + t * a.orient[j].z, s, grad_var), 0.0);
+        }
+    }
     p.pattern = uvec4(0u);
     for (int k = 0; k < MAX_KNOTS; k++) {
         p.knots[k] = vec4(0.0);

@@ -147,6 +147,179 @@ vec3 noise2_periodic(vec2 p, vec2 period) {
 }
 #endif
 
+// Oriented bands: a band mixed with its own derivative, m = (alpha, beta*dx, beta*dy), divided
+// by the mixture's deviation at the phase (twins in analyzer/src/noise/oriented.rs, where
+// wavelet_noise2/3_oriented are noise2/3_oriented).
+
+vec3 bspline_derivative(float p) {
+    float mid = ceil(p - 0.5);
+    float t = mid - (p - 0.5);
+    return vec3(-t, 2.0 * t - 1.0, 1.0 - t);
+}
+
+vec2 cross_lags(vec3 a, vec3 b) {
+    return vec2(
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2],
+        a[0] * b[1] + a[1] * b[0] + a[1] * b[2] + a[2] * b[1]);
+}
+
+float pair_covariance2(vec2 x, vec2 y) {
+    return TILE2_LAGS[0] * x[0] * y[0] + TILE2_LAGS[1] * (x[1] * y[0] + x[0] * y[1])
+        + TILE2_LAGS[2] * x[1] * y[1];
+}
+
+float pair_covariance3(vec2 x, vec2 y, vec2 z) {
+    return TILE3_LAGS[0] * x[0] * y[0] * z[0]
+        + TILE3_LAGS[1] * (x[1] * y[0] * z[0] + x[0] * y[1] * z[0] + x[0] * y[0] * z[1])
+        + TILE3_LAGS[2] * (x[1] * y[1] * z[0] + x[1] * y[0] * z[1] + x[0] * y[1] * z[1])
+        + TILE3_LAGS[3] * x[1] * y[1] * z[1];
+}
+
+float oriented_variance2(vec3 wx, vec3 wy, vec3 dwx, vec3 dwy, vec3 m) {
+    vec2 xx = cross_lags(wx, wx);
+    vec2 yy = cross_lags(wy, wy);
+    vec2 dxdx = cross_lags(dwx, dwx);
+    vec2 dydy = cross_lags(dwy, dwy);
+    vec2 xdx = cross_lags(wx, dwx);
+    vec2 ydy = cross_lags(wy, dwy);
+    return m[0] * m[0] * pair_covariance2(xx, yy)
+        + m[1] * m[1] * pair_covariance2(dxdx, yy)
+        + m[2] * m[2] * pair_covariance2(xx, dydy)
+        + 2.0 * m[0] * m[1] * pair_covariance2(xdx, yy)
+        + 2.0 * m[0] * m[2] * pair_covariance2(xx, ydy)
+        + 2.0 * m[1] * m[2] * pair_covariance2(xdx, ydy);
+}
+
+float oriented_variance3(vec3 wx, vec3 wy, vec3 wz, vec3 dwx, vec3 dwy, vec3 m) {
+    vec2 xx = cross_lags(wx, wx);
+    vec2 yy = cross_lags(wy, wy);
+    vec2 zz = cross_lags(wz, wz);
+    vec2 dxdx = cross_lags(dwx, dwx);
+    vec2 dydy = cross_lags(dwy, dwy);
+    vec2 xdx = cross_lags(wx, dwx);
+    vec2 ydy = cross_lags(wy, dwy);
+    return m[0] * m[0] * pair_covariance3(xx, yy, zz)
+        + m[1] * m[1] * pair_covariance3(dxdx, yy, zz)
+        + m[2] * m[2] * pair_covariance3(xx, dydy, zz)
+        + 2.0 * m[0] * m[1] * pair_covariance3(xdx, yy, zz)
+        + 2.0 * m[0] * m[2] * pair_covariance3(xx, ydy, zz)
+        + 2.0 * m[1] * m[2] * pair_covariance3(xdx, ydy, zz);
+}
+
+// The phase averages of the weights' and their derivatives' cross-lags, and the derivative's
+// mean variance along an axis (2D, 3D).
+const vec2 WEIGHT_LAGS_MEAN = vec2(11.0 / 20.0, 13.0 / 30.0);
+const vec2 DERIVATIVE_LAGS_MEAN = vec2(1.0, -2.0 / 3.0);
+
+float gradient_variance2() {
+    return pair_covariance2(DERIVATIVE_LAGS_MEAN, WEIGHT_LAGS_MEAN);
+}
+
+float gradient_variance3() {
+    return pair_covariance3(DERIVATIVE_LAGS_MEAN, WEIGHT_LAGS_MEAN, WEIGHT_LAGS_MEAN);
+}
+
+// A band's mixing (alpha, beta*dx, beta*dy) for streaks along angle_deg at strength s.
+vec3 mixing(float angle_deg, float strength, float grad_var) {
+    float s = clamp(strength, 0.0, 1.0);
+    float a = radians(angle_deg);
+    float beta = sqrt(s / grad_var);
+    return vec3(sqrt(1.0 - s), -sin(a) * beta, cos(a) * beta);
+}
+
+#ifdef PROCTEX_SOLID
+vec3 wavelet_noise3_oriented(vec3 p, vec3 m) {
+    int ni = tile3_side();
+    float nf = float(ni);
+    vec3 q = vec3(wrap_coord(p.x, nf), wrap_coord(p.y, nf), wrap_coord(p.z, nf));
+    BWeights bx = bspline_weights(q.x);
+    BWeights by = bspline_weights(q.y);
+    BWeights bz = bspline_weights(q.z);
+    vec3 dwx = bspline_derivative(q.x);
+    vec3 dwy = bspline_derivative(q.y);
+    ivec3 cols = ivec3(
+        wrap_index(bx.mid - 1, ni),
+        wrap_index(bx.mid, ni),
+        wrap_index(bx.mid + 1, ni));
+    vec3 value = vec3(0.0);
+    vec3 grad_x = vec3(0.0);
+    vec3 grad_y = vec3(0.0);
+    for (int dz = 0; dz < 3; dz++) {
+        int slab = wrap_index(bz.mid + dz - 1, ni);
+        vec3 plane = vec3(0.0);
+        vec3 plane_dx = vec3(0.0);
+        vec3 plane_dy = vec3(0.0);
+        for (int dy = 0; dy < 3; dy++) {
+            int row = wrap_index(by.mid + dy - 1, ni);
+            vec3 line = vec3(0.0);
+            vec3 line_d = vec3(0.0);
+            for (int dx = 0; dx < 3; dx++) {
+                vec3 c = tile3_texel(ivec3(cols[dx], row, slab));
+                line += bx.w[dx] * c;
+                line_d += dwx[dx] * c;
+            }
+            plane += by.w[dy] * line;
+            plane_dx += by.w[dy] * line_d;
+            plane_dy += dwy[dy] * line;
+        }
+        value += bz.w[dz] * plane;
+        grad_x += bz.w[dz] * plane_dx;
+        grad_y += bz.w[dz] * plane_dy;
+    }
+    float sd = sqrt(oriented_variance3(bx.w, by.w, bz.w, dwx, dwy, m));
+    return (m[0] * value + m[1] * grad_x + m[2] * grad_y) / sd;
+}
+#else
+// The oriented mixture over the 3x3 coefficients at cols and rows, the wrapped position q.
+vec3 oriented_3x3(ivec3 cols, ivec3 rows, vec2 q, vec3 m) {
+    vec3 wx = bspline_weights(q.x).w;
+    vec3 wy = bspline_weights(q.y).w;
+    vec3 dwx = bspline_derivative(q.x);
+    vec3 dwy = bspline_derivative(q.y);
+    vec3 value = vec3(0.0);
+    vec3 grad_x = vec3(0.0);
+    vec3 grad_y = vec3(0.0);
+    for (int dy = 0; dy < 3; dy++) {
+        vec3 line = vec3(0.0);
+        vec3 line_d = vec3(0.0);
+        for (int dx = 0; dx < 3; dx++) {
+            vec3 c = texelFetch(proctex_tile2, ivec2(cols[dx], rows[dy]), 0).xyz;
+            line += wx[dx] * c;
+            line_d += dwx[dx] * c;
+        }
+        value += wy[dy] * line;
+        grad_x += wy[dy] * line_d;
+        grad_y += dwy[dy] * line;
+    }
+    float sd = sqrt(oriented_variance2(wx, wy, dwx, dwy, m));
+    return (m[0] * value + m[1] * grad_x + m[2] * grad_y) / sd;
+}
+
+vec3 wavelet_noise2_oriented(vec2 p, vec3 m) {
+    int ni = textureSize(proctex_tile2, 0).x;
+    float nf = float(ni);
+    vec2 q = vec2(wrap_coord(p.x, nf), wrap_coord(p.y, nf));
+    int mx = bspline_weights(q.x).mid;
+    int my = bspline_weights(q.y).mid;
+    ivec3 cols = ivec3(wrap_index(mx - 1, ni), wrap_index(mx, ni), wrap_index(mx + 1, ni));
+    ivec3 rows = ivec3(wrap_index(my - 1, ni), wrap_index(my, ni), wrap_index(my + 1, ni));
+    return oriented_3x3(cols, rows, q, m);
+}
+
+vec3 noise2_periodic_oriented(vec2 p, vec2 period, vec3 m) {
+    float nf = float(textureSize(proctex_tile2, 0).x);
+    vec2 pw = vec2(min(period.x, nf), min(period.y, nf));
+    int px = int(pw.x);
+    int py = int(pw.y);
+    vec2 q = vec2(wrap_coord(p.x, pw.x), wrap_coord(p.y, pw.y));
+    int mx = bspline_weights(q.x).mid;
+    int my = bspline_weights(q.y).mid;
+    ivec3 cols = ivec3(wrap_period(mx - 1, px), wrap_period(mx, px), wrap_period(mx + 1, px));
+    ivec3 rows = ivec3(wrap_period(my - 1, py), wrap_period(my, py), wrap_period(my + 1, py));
+    return oriented_3x3(cols, rows, q, m);
+}
+#endif
+
 float band_fade(uint band, float log2_footprint) {
     return clamp(1.0 - (log2_footprint - float(band)), 0.0, 1.0);
 }

@@ -13,6 +13,7 @@ struct Params {
     vec4 sigma;             // sigma_M per channel
     vec4 weights[12];       // [band] -> weight of channels 0, 1, 2
     vec4 offsets[12];       // [band] -> offset (x, y, z) in coefficient units
+    vec4 orient[12];        // [band] -> mixing of the band and its derivative (alpha, beta*dx, beta*dy)
     vec4 knots[33];         // [knot] -> knot value of channels 0, 1, 2
     vec4 tangents[33];      // [knot] -> Fritsch-Carlson tangent of channels 0, 1, 2
     uvec4 pattern;          // pattern kind (0: noise model), ramp stops, cell-hash seed, tone knots

@@ -21,10 +21,23 @@ vec3 texture_noise(vec3 u, float log2_fp) {
         }
         float f = 1.0 / float(1u << j);
         vec3 o = params.offsets[j].xyz;
+        vec3 m = params.orient[j].xyz;
+        bool isotropic = m.y == 0.0 && m.z == 0.0;
+        vec3 v;
 #ifdef PROCTEX_SOLID
-        vec3 v = wavelet_noise3(vec3(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z));
+        vec3 p = vec3(u.x * f + o.x, u.y * f + o.y, u.z * f + o.z);
+        if (isotropic) {
+            v = wavelet_noise3(p);
+        } else {
+            v = wavelet_noise3_oriented(p, m);
+        }
 #else
-        vec3 v = wavelet_noise2(vec2(u.x * f + o.x, u.y * f + o.y));
+        vec2 p = vec2(u.x * f + o.x, u.y * f + o.y);
+        if (isotropic) {
+            v = wavelet_noise2(p);
+        } else {
+            v = wavelet_noise2_oriented(p, m);
+        }
 #endif
         sum += w * v;
     }

@@ -18,7 +18,10 @@ const TWIN_FILES: [(&str, &[&str]); 18] = [
     ("atlas3.wgsl", &["analyzer/src/noise.rs"]),
     ("bake2.wgsl", &["analyzer/src/noise.rs"]),
     ("bake3.wgsl", &["analyzer/src/noise.rs"]),
-    ("noise.wgsl", &["analyzer/src/noise.rs"]),
+    (
+        "noise.wgsl",
+        &["analyzer/src/noise.rs", "analyzer/src/noise/oriented.rs"],
+    ),
     ("histogram.wgsl", &["analyzer/src/histogram.rs"]),
     ("texture.wgsl", &["analyzer/src/render.rs"]),
     ("plane.wgsl", &["analyzer/src/render.rs"]),
@@ -112,9 +115,11 @@ fn every_wgsl_function_has_a_rust_twin() {
 
 /// GLSL function → WGSL twin, where the names differ (GLSL reserves the WGSL name, or the
 /// GLSL `main` of the bake passes is the WGSL entry points).
-const GLSL_RENAMED: [(&str, &str); 4] = [
+const GLSL_RENAMED: [(&str, &str); 6] = [
     ("wavelet_noise2", "noise2"),
     ("wavelet_noise3", "noise3"),
+    ("wavelet_noise2_oriented", "noise2_oriented"),
+    ("wavelet_noise3_oriented", "noise3_oriented"),
     ("main", "fs_bake_tile"),
     ("main", "fs_bake3_tile"),
 ];

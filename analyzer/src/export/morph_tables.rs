@@ -208,6 +208,9 @@ struct MorphKey {
     quat: [f32; 4],
     pose: [f32; 4],
     weights: [[f32; 4]; MAX_BANDS],
+    /// Per band: √strength (`crate::morph::morph_strength`), streak angle (degrees), turn to the segment's other end (degrees,
+    /// linear: `crate::morph::morph_orientation`), unused.
+    orient: [[f32; 4]; MAX_BANDS],
     knots: [[f32; 4]; MAX_KNOTS],
 }
 
@@ -247,7 +250,10 @@ impl MorphTables {
                     w[0].transform.rotation_deg,
                     w[1].transform.rotation_deg,
                 );
-                let end = |p: &Params, m: &crate::params::NoiseModel| {
+                let orient: Vec<_> = (0..MAX_BANDS)
+                    .map(|j| crate::morph::orientation_ends(ma, mb, j))
+                    .collect();
+                let end = |p: &Params, m: &crate::params::NoiseModel, side: usize| {
                     let q = quat_from_matrix(p.colour.basis.map(|r| r.map(|v| v as f64)));
                     let knots = crate::morph::effective_knots(m, k);
                     let mut key = MorphKey {
@@ -260,8 +266,18 @@ impl MorphTables {
                         quat: q.map(|v| v as f32),
                         pose: [p.transform.scale.ln(), p.transform.rotation_deg, turn, 0.0],
                         weights: [[0.0; 4]; MAX_BANDS],
+                        orient: [[0.0; 4]; MAX_BANDS],
                         knots: [[0.0; 4]; MAX_KNOTS],
                     };
+                    for (j, (oa, ob)) in orient.iter().enumerate() {
+                        let o = if side == 0 { oa } else { ob };
+                        key.orient[j] = [
+                            o.strength.sqrt(),
+                            o.angle_deg,
+                            ob.angle_deg - oa.angle_deg,
+                            0.0,
+                        ];
+                    }
                     for c in 0..3 {
                         for (j, &wt) in m.weights[c].iter().enumerate().take(MAX_BANDS) {
                             key.weights[j][c] = wt;
@@ -279,7 +295,7 @@ impl MorphTables {
                     (ma.histogram.enabled || mb.histogram.enabled) as u32,
                 ];
                 MorphSegment {
-                    ends: [end(&w[0], ma), end(&w[1], mb)],
+                    ends: [end(&w[0], ma, 0), end(&w[1], mb, 1)],
                     counts,
                     structure: SegmentStructure::new(&w[0], &w[1]),
                 }
@@ -298,11 +314,12 @@ impl MorphTables {
     pub(super) fn constants(&self, lang: Lang) -> String {
         let key = |k: &MorphKey| {
             format!(
-                "MorphKey(\n    {},\n    {},\n    {},\n    {},\n    {}\n)",
+                "MorphKey(\n    {},\n    {},\n    {},\n    {},\n    {},\n    {}\n)",
                 lang.vec4(k.mean),
                 lang.vec4(k.quat),
                 lang.vec4(k.pose),
                 lang.array(k.weights.iter().copied(), MAX_BANDS),
+                lang.array(k.orient.iter().copied(), MAX_BANDS),
                 lang.array(k.knots.iter().copied(), MAX_KNOTS),
             )
         };

@@ -257,3 +257,113 @@ fn band_fade_ramps() {
     assert_eq!(band_fade(3, 2.0), 1.0);
     assert_eq!(band_fade(3, -5.0), 1.0);
 }
+
+#[test]
+fn derivative_weights_are_the_slope_of_the_weights() {
+    for p in [3.1f32, 3.7, 3.93, 10.0, 0.6] {
+        let h = 1e-3;
+        let (mid, w) = bspline_weights(p);
+        let (mid2, w2) = bspline_weights(p + h);
+        assert_eq!(mid, mid2);
+        let d = oriented::bspline_derivative(p);
+        for k in 0..3 {
+            assert!(((w2[k] - w[k]) / h - d[k]).abs() < 2e-3, "p {p} k {k}");
+        }
+    }
+}
+
+#[test]
+fn gradient_variance_matches_the_tile() {
+    // The derivative along x of the B-spline surface, averaged over phases and the tile,
+    // against the closed form from the tile's lags (2 % of it: the lags' own precision).
+    let t = Tile::new_2d(7);
+    let n = TILE_2D;
+    let mut s2 = 0.0f64;
+    let phases = [0.05f32, 0.3, 0.55, 0.8];
+    for &fx in &phases {
+        for &fy in &phases {
+            for y in 0..n {
+                for x in 0..n {
+                    let (px, py) = (x as f32 + fx, y as f32 + fy);
+                    let (mx, _) = bspline_weights(px);
+                    let (my, wy) = bspline_weights(py);
+                    let dwx = oriented::bspline_derivative(px);
+                    let mut g = 0.0f32;
+                    for dy in 0..3 {
+                        for dx in 0..3 {
+                            let i = wrap_index(my + dy as i32 - 1, n as i32) * n
+                                + wrap_index(mx + dx as i32 - 1, n as i32);
+                            g += wy[dy] * dwx[dx] * t.data[i];
+                        }
+                    }
+                    s2 += (g as f64).powi(2);
+                }
+            }
+        }
+    }
+    let measured = s2 / (n * n * phases.len() * phases.len()) as f64;
+    let closed = oriented::gradient_variance2() as f64;
+    assert!(
+        (measured / closed - 1.0).abs() < 0.02,
+        "{measured} vs {closed}"
+    );
+}
+
+#[test]
+fn oriented_bands_have_unit_variance_at_every_phase() {
+    let t = Tile::new_2d(5);
+    let n = TILE_2D;
+    for (angle, strength) in [(0.0f32, 1.0f32), (30.0, 0.6), (135.0, 0.3)] {
+        let m = oriented::mixing(angle, strength, oriented::gradient_variance2());
+        for (fx, fy) in [(0.5, 0.5), (0.0, 0.0), (0.25, 0.5), (0.8, 0.1)] {
+            let mut s2 = 0.0f64;
+            for y in 0..n {
+                for x in 0..n {
+                    let p = [x as f32 + fx, y as f32 + fy];
+                    for v in oriented::noise2_oriented(&t.data, n, p, m) {
+                        s2 += (v as f64).powi(2) / COMPONENTS as f64;
+                    }
+                }
+            }
+            let sd = (s2 / (n * n) as f64).sqrt();
+            assert!(
+                (sd - 1.0).abs() < 0.03,
+                "{angle}° {strength} phase ({fx}, {fy}): {sd}"
+            );
+        }
+    }
+}
+
+#[test]
+fn an_isotropic_mixture_is_the_plain_band() {
+    // Strength 0 (α = 1, no derivative) reproduces the plain band within rounding, so the
+    // shaders' isotropic branch and the oriented one agree there.
+    let t = Tile::new_2d(3);
+    let m = oriented::mixing(40.0, 0.0, oriented::gradient_variance2());
+    for p in [[3.3f32, 7.9], [100.25, 0.5], [64.0, 12.7]] {
+        let a = noise2(&t.data, TILE_2D, p);
+        let b = oriented::noise2_oriented(&t.data, TILE_2D, p, m);
+        for k in 0..COMPONENTS {
+            assert!((a[k] - b[k]).abs() < 1e-5, "{p:?}: {a:?} {b:?}");
+        }
+    }
+}
+
+#[test]
+fn periodic_oriented_band_repeats() {
+    let t = Tile::new_2d(9);
+    let m = oriented::mixing(70.0, 0.8, oriented::gradient_variance2());
+    for p in [[1.3f32, 2.7], [20.5, 3.25]] {
+        let a = oriented::noise2_periodic_oriented(&t.data, TILE_2D, p, [24.0, 24.0], m);
+        let b = oriented::noise2_periodic_oriented(
+            &t.data,
+            TILE_2D,
+            [p[0] + 24.0, p[1] + 48.0],
+            [24.0, 24.0],
+            m,
+        );
+        for k in 0..COMPONENTS {
+            assert!((a[k] - b[k]).abs() < 1e-4, "{p:?}");
+        }
+    }
+}

@@ -67,6 +67,7 @@ pub fn noise_params(weights: [Vec<f32>; 3], basis: [[f32; 3]; 3], seed: u32) -> 
                     vec![-0.1, 0.0, 0.1],
                 ],
             },
+            orientation: Vec::new(),
         }),
         source: None,
     }

@@ -2,7 +2,7 @@
 //! and the edit history (undo, redo, reset).
 
 use eframe::egui;
-use proctex::params::{MAX_CONTRAST, Model};
+use proctex::params::{BandOrientation, MAX_CONTRAST, Model, NoiseModel};
 
 use super::{ProctexApp, now_ms, short};
 
@@ -195,6 +195,7 @@ impl ProctexApp {
                     rects.push((format!("weight.{c}.{j}"), r));
                 }
             }
+            orientation_controls(ui, model, scale, &mut rects);
         });
         if *params != before {
             self.last_edit_ms = now_ms();
@@ -280,5 +281,51 @@ fn tone_plot(ui: &mut egui::Ui, tone: &proctex::params::Tone) {
             points,
             egui::Stroke::new(1.5, colour.gamma_multiply(alpha)),
         ));
+    }
+}
+
+/// Per band, shared by the three channels: the direction its streaks run along and how strongly
+/// (0: isotropic). A model without orientations gets them on the first edit.
+fn orientation_controls(
+    ui: &mut egui::Ui,
+    model: &mut NoiseModel,
+    scale: f32,
+    rects: &mut Vec<(String, egui::Response)>,
+) {
+    ui.separator();
+    ui.label("Band orientation (all channels) — streak direction and strength");
+    let mut bands: Vec<BandOrientation> = (0..model.bands())
+        .map(|j| model.band_orientation(j))
+        .collect();
+    let mut changed = false;
+    for (j, o) in bands.iter_mut().enumerate() {
+        let lo = (1u32 << (j + 1)) as f32 * scale;
+        let hi = (1u32 << (j + 2)) as f32 * scale;
+        let hover = format!(
+            "band {j} (wavelengths {}–{} px): its features stretch along this direction; \
+             strength 0 is isotropic, 1 puts all of its power across the streaks",
+            short(lo),
+            short(hi)
+        );
+        ui.horizontal(|ui| {
+            // Angles outside [0, 180] (a morph's path) show wrapped; only an edit writes back.
+            let mut angle = o.angle_deg.rem_euclid(180.0);
+            let r = ui
+                .add(egui::Slider::new(&mut angle, 0.0..=180.0).suffix("°"))
+                .on_hover_text(hover.clone());
+            if r.changed() {
+                o.angle_deg = angle;
+                changed = true;
+            }
+            rects.push((format!("orient.angle.{j}"), r));
+            let r = ui
+                .add(egui::Slider::new(&mut o.strength, 0.0..=1.0).text(format!("band {j}")))
+                .on_hover_text(hover);
+            changed |= r.changed();
+            rects.push((format!("orient.strength.{j}"), r));
+        });
+    }
+    if changed {
+        model.orientation = bands;
     }
 }
