@@ -32,7 +32,7 @@ struct MorphKey {
     pose: vec4<f32>,
     // [band] → weight of channels 0, 1, 2
     weights: array<vec4<f32>, 12>,
-    // [band] → √(orientation strength), streak angle (degrees), turn to the segment's other end
+    // [band] → asin √(orientation strength) (the phase that interpolates), streak angle (degrees), turn to the segment's other end
     // (degrees, linear: angles 180° apart negate the band's derivative)
     orient: array<vec4<f32>, 12>,
     // [knot] → inverse-CDF knot of channels 0, 1, 2 at the segment's knot count (the identity
@@ -165,8 +165,8 @@ fn morph(seg: MorphSegment, t: f32) -> Params {
         grad_var = gradient_variance3();
     }
     for (var j = 0u; j < MAX_BANDS; j++) {
-        let r = a.orient[j].x + t * (b.orient[j].x - a.orient[j].x);
-        let s = clamp(r * r, 0.0, 1.0);
+        let phi = a.orient[j].x + t * (b.orient[j].x - a.orient[j].x);
+        let s = clamp(sin(phi) * sin(phi), 0.0, 1.0);
         p.orient[j] = vec4<f32>(1.0, 0.0, 0.0, 0.0);
         if (s > 0.0) {
             p.orient[j] = vec4<f32>(mixing(a.orient[j].y + t * a.orient[j].z, s, grad_var), 0.0);

@@ -37,9 +37,8 @@ pub struct Options {
     pub estimator: Estimator,
     /// Periodic + smooth decomposition before the FFT.
     pub periodic: bool,
-    /// Fit each band's orientation ([`crate::orientation`]); off (the default until the
-    /// ranking's constants are chosen again with it and morphs of strongly oriented bands are
-    /// smooth): every band isotropic, as in Lagae et al.
+    /// Fit each band's orientation ([`crate::orientation`]); off: every band isotropic, as in
+    /// Lagae et al.
     pub orientation: bool,
 }
 
@@ -53,7 +52,7 @@ impl Default for Options {
             seed: 1,
             estimator: Estimator::Deconvolved,
             periodic: true,
-            orientation: false,
+            orientation: true,
         }
     }
 }

@@ -81,9 +81,10 @@ pub(crate) fn morph_orientation(
         .collect()
 }
 
-/// An orientation strength a fraction `t` of the way: its square root linearly, since the
-/// derivative's amplitude is `√s` (linear `s` puts a fifth of the amplitude into the first
-/// twentieth of the way from an isotropic band, a visible jump); the ends exactly.
+/// An orientation strength a fraction `t` of the way: the band's amplitudes are `√(1 − s)`
+/// (isotropic) and `√s` (derivative), `cos φ` and `sin φ` of `φ = asin √s`, so `φ` moves
+/// linearly. Linear `s` would move an amplitude by a fifth in the first twentieth of the way
+/// from `s = 0` or to `s = 1` (a visible jump in the morph tests); the ends exactly.
 pub(crate) fn morph_strength(a: f32, b: f32, t: f32) -> f32 {
     if t == 0.0 {
         return a;
@@ -91,8 +92,13 @@ pub(crate) fn morph_strength(a: f32, b: f32, t: f32) -> f32 {
     if t == 1.0 {
         return b;
     }
-    let r = lerp(a.sqrt(), b.sqrt(), t);
-    (r * r).clamp(0.0, 1.0)
+    let phi = lerp(strength_phase(a), strength_phase(b), t);
+    (phi.sin() * phi.sin()).clamp(0.0, 1.0)
+}
+
+/// `asin √s`: the strength as the phase [`morph_strength`] interpolates.
+pub(crate) fn strength_phase(s: f32) -> f32 {
+    s.clamp(0.0, 1.0).sqrt().asin()
 }
 
 /// Band `j`'s orientation at both ends of a morph, a strengthless end's angle replaced by the

@@ -9,7 +9,7 @@ struct MorphKey {
     vec4 quat;          // the colour basis as a unit quaternion (w, x, y, z)
     vec4 pose;          // ln(scale), rotation (degrees), turn to the other end (degrees)
     vec4 weights[12];   // [band] -> weight of channels 0, 1, 2
-    vec4 orient[12];    // [band] -> sqrt(strength), streak angle (degrees), turn to the other end
+    vec4 orient[12];    // [band] -> asin(sqrt(strength)), streak angle (degrees), turn to the other end
     vec4 knots[33];     // [knot] -> inverse-CDF knot of channels 0, 1, 2 (segment's count)
 };
 
@@ -186,8 +186,8 @@ Params morph(MorphSegment seg, float t) {
     p.offsets = MORPH_OFFSETS;
     float grad_var = seg.counts.z != 0u ? gradient_variance3() : gradient_variance2();
     for (int j = 0; j < MAX_BANDS; j++) {
-        float r = a.orient[j].x + t * (b.orient[j].x - a.orient[j].x);
-        float s = clamp(r * r, 0.0, 1.0);
+        float phi = a.orient[j].x + t * (b.orient[j].x - a.orient[j].x);
+        float s = clamp(sin(phi) * sin(phi), 0.0, 1.0);
         p.orient[j] = vec4(1.0, 0.0, 0.0, 0.0);
         if (s > 0.0) {
             p.orient[j] = vec4(mixing(a.orient[j].y + t * a.orient[j].z, s, grad_var), 0.0);

@@ -208,8 +208,9 @@ struct MorphKey {
     quat: [f32; 4],
     pose: [f32; 4],
     weights: [[f32; 4]; MAX_BANDS],
-    /// Per band: √strength (`crate::morph::morph_strength`), streak angle (degrees), turn to the segment's other end (degrees,
-    /// linear: `crate::morph::morph_orientation`), unused.
+    /// Per band: `asin √strength` (the phase `crate::morph::morph_strength` interpolates),
+    /// streak angle (degrees), turn to the segment's other end (degrees, linear:
+    /// `crate::morph::morph_orientation`), unused.
     orient: [[f32; 4]; MAX_BANDS],
     knots: [[f32; 4]; MAX_KNOTS],
 }
@@ -272,7 +273,7 @@ impl MorphTables {
                     for (j, (oa, ob)) in orient.iter().enumerate() {
                         let o = if side == 0 { oa } else { ob };
                         key.orient[j] = [
-                            o.strength.sqrt(),
+                            crate::morph::strength_phase(o.strength),
                             o.angle_deg,
                             ob.angle_deg - oa.angle_deg,
                             0.0,

@@ -44,7 +44,7 @@ OPTIONS:
     --seed S                seed of the noise (default 1)
     --estimator E           deconvolved (default) or lagae (the paper's eq. 9)
     --no-periodic           skip the periodic+smooth decomposition before the FFT
-    --orient                fit each noise band's orientation (default: isotropic, as Lagae)
+    --isotropic             every noise band isotropic (no fitted orientation), as Lagae
     --model M               auto (default): the nearest of every candidate below, by texture
                             distance; noise: Lagae's noise model; or a structured family:
                             perlin, turbulence, ridged, grid, brick, cells, planks,

@@ -62,7 +62,7 @@ fn analysis_flag(flag: &str, a: &mut Args, o: &mut Options) -> Result<bool> {
         "--knots" => o.knots = a.parsed(flag)?,
         "--seed" => o.seed = a.parsed(flag)?,
         "--no-periodic" => o.periodic = false,
-        "--orient" => o.orientation = true,
+        "--isotropic" => o.orientation = false,
         "--estimator" => {
             o.estimator = match a.value(flag)?.as_str() {
                 "lagae" => Estimator::Lagae,
