@@ -135,6 +135,55 @@ test('dragging the finest band weight raises and removes high-frequency energy',
   expect((await state(page)).undo).toBe(2);
 });
 
+// The structure tensor of the luminance: [Σgx², Σgy²] (central differences).
+function gradientEnergy(img) {
+  const { width: w, height: h, data } = img;
+  const lum = (x, y) => {
+    const i = (y * w + x) * 4;
+    return 0.299 * data[i] + 0.587 * data[i + 1] + 0.114 * data[i + 2];
+  };
+  let xx = 0, yy = 0;
+  for (let y = 1; y < h - 1; y++) {
+    for (let x = 1; x < w - 1; x++) {
+      const gx = lum(x + 1, y) - lum(x - 1, y), gy = lum(x, y + 1) - lum(x, y - 1);
+      xx += gx * gx; yy += gy * gy;
+    }
+  }
+  return [xx, yy];
+}
+
+test('band orientations turn the streaks, and their sliders edit them', async ({ page }) => {
+  await openApp(page);
+  const square = innerSquare((await state(page)).widgets.texture, 256);
+  const base = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  const bands = base.model.weights[0].length;
+  // Every band at full strength: streaks along the texel x axis (0°), then the y axis (90°).
+  const ratio = async (angle) => {
+    const p = structuredClone(base);
+    p.model.orientation = Array.from({ length: bands }, () => ({ angle_deg: angle, strength: 1 }));
+    await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(p));
+    await waitFrames(page, 3);
+    const [xx, yy] = gradientEnergy(await grab(page, square));
+    return yy / xx;
+  };
+  const along = await ratio(0), across = await ratio(90);
+  console.log(`gradient energy y/x: streaks at 0° ${along.toFixed(2)}, at 90° ${across.toFixed(2)}`);
+  // A pure derivative band has 3× the gradient energy across its streaks as along them.
+  expect(along).toBeGreaterThan(1.5);
+  expect(across).toBeLessThan(1 / 1.5);
+  // The strength slider of band 1: dragged to its left end, that band is isotropic.
+  const [x, y, , h] = await reveal(page, 'orient.strength.1');
+  const cy = y + h / 2;
+  await page.mouse.move(x + 40, cy);
+  await page.mouse.down();
+  await page.mouse.move(x - 60, cy, { steps: 8 });
+  await page.mouse.up();
+  await waitFrames(page, 3);
+  const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(after.model.orientation[1].strength).toBe(0);
+  expect(after.model.orientation[2].strength).toBe(1);
+});
+
 test('wheel zooms and drag pans the view', async ({ page }) => {
   await openApp(page);
   const s0 = await state(page);
