@@ -30,9 +30,15 @@
 //! an octave and a quarter of an octave of radial frequency, then one octave and half an octave
 //! each cut into four orientation wedges of 45°.
 //!
+//! With `--orient`: octave boxes against one orientation profile per octave shared by the
+//! channels (`1 + s·cos 2(θ−θ0)`, what `noise::oriented` renders, and a narrow von Mises one).
+//! With `--colour`: the oriented octave boxes, then rounds of iterative distribution transfer
+//! (rotate the decorrelated channels, rank-match each rotated axis, rotate back): what matching
+//! the channels' joint distribution, not only their marginals, could buy.
+//!
 //! ```text
 //! cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
-//!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands]
+//!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands | --orient | --colour]
 //! ```
 
 use proctex::analyze::{Options, analyze_photo};
@@ -71,6 +77,73 @@ const ORIENT_RUNGS: [&str; 5] = [
     "octave boxes, shared profile 1 + s·cos 2(θ−θ0)",
     "octave boxes, shared profile exp(κ·cos 2(θ−θ0))",
 ];
+
+/// The `--colour` ladder: what matching the channels' joint distribution could buy. Every rung
+/// starts from the oriented octave-box fields (the product's ideal), then runs `k` rounds of
+/// iterative distribution transfer (Pitié et al. 2005): rotate the decorrelated channels by a
+/// fixed rotation, rank-match each rotated axis to the photo's values on it, rotate back.
+const COLOUR_RUNGS: [&str; 5] = [
+    "oriented octave boxes, per-channel histograms (0 rounds)",
+    "+ 1 round of rotation and 1D matching",
+    "+ 2 rounds",
+    "+ 4 rounds",
+    "+ 16 rounds",
+];
+const COLOUR_ROUNDS: [usize; 5] = [0, 1, 2, 4, 16];
+
+/// A fixed, well-spread rotation for round `r` (Euler angles in golden-ratio steps).
+fn round_rotation(r: usize) -> [[f32; 3]; 3] {
+    let g = 0.618_034_f64;
+    let (a, b, c) = (
+        (r as f64 * g).fract() * std::f64::consts::TAU,
+        ((r as f64 * g * g).fract() * 2.0 - 1.0).acos(),
+        ((r as f64 + 0.5) * g * 3.0).fract() * std::f64::consts::TAU,
+    );
+    let rz = |t: f64| {
+        [
+            [t.cos(), -t.sin(), 0.0],
+            [t.sin(), t.cos(), 0.0],
+            [0.0, 0.0, 1.0],
+        ]
+    };
+    let ry = |t: f64| {
+        [
+            [t.cos(), 0.0, t.sin()],
+            [0.0, 1.0, 0.0],
+            [-t.sin(), 0.0, t.cos()],
+        ]
+    };
+    let mul = |x: [[f64; 3]; 3], y: [[f64; 3]; 3]| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| x[i][k] * y[k][j]).sum()))
+    };
+    mul(mul(rz(a), ry(b)), rz(c)).map(|row| row.map(|v| v as f32))
+}
+
+/// Rung `rung` of the `--colour` ladder ([`COLOUR_RUNGS`]).
+fn synthesise_colour(rung: usize, src: &Photo, seed: u32) -> Photo {
+    let (w, h) = (src.width, src.height);
+    let m = model_of(src, seed);
+    let fields = profiled_fields(&m.channels, w as usize, h as usize, seed, Profile::Cosine);
+    let mut v: [Vec<f32>; 3] = std::array::from_fn(|c| rank_match(&fields[c], &m.channels[c]));
+    for r in 0..COLOUR_ROUNDS[rung] {
+        let rot = round_rotation(r + 1);
+        let project = |x: &[Vec<f32>; 3]| -> [Vec<f32>; 3] {
+            std::array::from_fn(|a| {
+                (0..x[0].len())
+                    .map(|i| (0..3).map(|c| rot[a][c] * x[c][i]).sum())
+                    .collect()
+            })
+        };
+        let (pv, pt) = (project(&v), project(&m.channels));
+        let matched: [Vec<f32>; 3] = std::array::from_fn(|a| rank_match(&pv[a], &pt[a]));
+        v = std::array::from_fn(|c| {
+            (0..matched[0].len())
+                .map(|i| (0..3).map(|a| rot[a][c] * matched[a][i]).sum())
+                .collect()
+        });
+    }
+    to_rgb(&m, &v, w, h)
+}
 
 /// Radial bins per octave and orientation wedges of each [`BAND_RUNGS`] rung after the floor.
 const BAND_SHAPES: [(f64, usize); 5] = [(1.0, 1), (2.0, 1), (4.0, 1), (1.0, 4), (2.0, 4)];
@@ -536,10 +609,13 @@ fn main() {
     let all: Vec<String> = std::env::args().skip(1).collect();
     let bands = all.iter().any(|a| a == "--bands");
     let orient = all.iter().any(|a| a == "--orient");
+    let colour_ladder = all.iter().any(|a| a == "--colour");
     let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
     let manifest = *args.first().expect("MANIFEST.tsv");
     let seeds: Vec<u32> = (1..=args.get(1).map_or(2, |s| s.parse().unwrap())).collect();
-    let names: &[&str] = if orient {
+    let names: &[&str] = if colour_ladder {
+        &COLOUR_RUNGS
+    } else if orient {
         &ORIENT_RUNGS
     } else if bands {
         &BAND_RUNGS
@@ -560,7 +636,9 @@ fn main() {
         let mut line = format!("{:<36}", e.file);
         for (rung, rows) in table.iter_mut().enumerate() {
             let f: Fidelity = fidelity_with(&photo, &seeds, &mut |src, seed| {
-                Ok(if orient {
+                Ok(if colour_ladder {
+                    synthesise_colour(rung, src, seed)
+                } else if orient {
                     synthesise_orient(rung, src, seed)
                 } else if bands {
                     synthesise_bands(rung, src, seed)
