@@ -150,7 +150,7 @@ fn noise3(p: vec3<f32>) -> vec3<f32> {
 // Oriented bands: a band mixed with its own derivative, m = (α, β·dx, β·dy), divided by the
 // mixture's deviation at the phase. Twins: analyzer/src/noise/oriented.rs (bspline_derivative,
 // cross_lags, pair_covariance2/3, oriented_variance2/3, noise2_oriented,
-// noise2_periodic_oriented, noise3_oriented).
+// noise2_periodic_oriented, noise3_oriented, mixed_weights).
 
 fn bspline_derivative(p: f32) -> vec3<f32> {
     let mid = ceil(p - 0.5);
@@ -177,35 +177,27 @@ fn pair_covariance3(x: vec2<f32>, y: vec2<f32>, z: vec2<f32>) -> f32 {
         + TILE3_LAGS[3] * x[1] * y[1] * z[1];
 }
 
-fn oriented_variance2(wx: vec3<f32>, wy: vec3<f32>, dwx: vec3<f32>, dwy: vec3<f32>, m: vec3<f32>) -> f32 {
-    let xx = cross_lags(wx, wx);
-    let yy = cross_lags(wy, wy);
-    let dxdx = cross_lags(dwx, dwx);
-    let dydy = cross_lags(dwy, dwy);
-    let xdx = cross_lags(wx, dwx);
-    let ydy = cross_lags(wy, dwy);
-    return m[0] * m[0] * pair_covariance2(xx, yy)
-        + m[1] * m[1] * pair_covariance2(dxdx, yy)
-        + m[2] * m[2] * pair_covariance2(xx, dydy)
-        + 2.0 * m[0] * m[1] * pair_covariance2(xdx, yy)
-        + 2.0 * m[0] * m[2] * pair_covariance2(xx, ydy)
-        + 2.0 * m[1] * m[2] * pair_covariance2(xdx, ydy);
+// The x weights of the mixture's first separable term, α·wx + gx·dwx: the mixture weighs the
+// taps by ax ⊗ wy + gy·(wx ⊗ dwy).
+fn mixed_weights(wx: vec3<f32>, dwx: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(
+        m[0] * wx[0] + m[1] * dwx[0],
+        m[0] * wx[1] + m[1] * dwx[1],
+        m[0] * wx[2] + m[1] * dwx[2],
+    );
 }
 
-fn oriented_variance3(wx: vec3<f32>, wy: vec3<f32>, wz: vec3<f32>, dwx: vec3<f32>, dwy: vec3<f32>, m: vec3<f32>) -> f32 {
-    let xx = cross_lags(wx, wx);
-    let yy = cross_lags(wy, wy);
+fn oriented_variance2(ax: vec3<f32>, wx: vec3<f32>, wy: vec3<f32>, dwy: vec3<f32>, gy: f32) -> f32 {
+    return pair_covariance2(cross_lags(ax, ax), cross_lags(wy, wy))
+        + 2.0 * gy * pair_covariance2(cross_lags(ax, wx), cross_lags(wy, dwy))
+        + gy * gy * pair_covariance2(cross_lags(wx, wx), cross_lags(dwy, dwy));
+}
+
+fn oriented_variance3(ax: vec3<f32>, wx: vec3<f32>, wy: vec3<f32>, wz: vec3<f32>, dwy: vec3<f32>, gy: f32) -> f32 {
     let zz = cross_lags(wz, wz);
-    let dxdx = cross_lags(dwx, dwx);
-    let dydy = cross_lags(dwy, dwy);
-    let xdx = cross_lags(wx, dwx);
-    let ydy = cross_lags(wy, dwy);
-    return m[0] * m[0] * pair_covariance3(xx, yy, zz)
-        + m[1] * m[1] * pair_covariance3(dxdx, yy, zz)
-        + m[2] * m[2] * pair_covariance3(xx, dydy, zz)
-        + 2.0 * m[0] * m[1] * pair_covariance3(xdx, yy, zz)
-        + 2.0 * m[0] * m[2] * pair_covariance3(xx, ydy, zz)
-        + 2.0 * m[1] * m[2] * pair_covariance3(xdx, ydy, zz);
+    return pair_covariance3(cross_lags(ax, ax), cross_lags(wy, wy), zz)
+        + 2.0 * gy * pair_covariance3(cross_lags(ax, wx), cross_lags(wy, dwy), zz)
+        + gy * gy * pair_covariance3(cross_lags(wx, wx), cross_lags(dwy, dwy), zz);
 }
 
 // The phase averages of the weights' and their derivatives' cross-lags, and the derivative's
@@ -229,40 +221,32 @@ fn mixing(angle_deg: f32, strength: f32, grad_var: f32) -> vec3<f32> {
     return vec3<f32>(sqrt(1.0 - s), -sin(a) * beta, cos(a) * beta);
 }
 
-// The oriented mixture over the 3x3 coefficients at cols and rows, the wrapped position q.
-fn oriented_3x3(cols: vec3<i32>, rows: vec3<i32>, q: vec2<f32>, m: vec3<f32>) -> vec3<f32> {
-    let wx = bspline_weights(q.x).w;
-    let wy = bspline_weights(q.y).w;
-    let dwx = bspline_derivative(q.x);
-    let dwy = bspline_derivative(q.y);
-    var value = vec3<f32>(0.0);
-    var grad_x = vec3<f32>(0.0);
-    var grad_y = vec3<f32>(0.0);
+// The mixture over the 3x3 coefficients at cols and rows, weighted ax ⊗ wy + gy·(wx ⊗ dwy).
+fn oriented_3x3(cols: vec3<i32>, rows: vec3<i32>, ax: vec3<f32>, wx: vec3<f32>, wy: vec3<f32>, dwy: vec3<f32>, gy: f32) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
     for (var dy = 0; dy < 3; dy++) {
+        var line_a = vec3<f32>(0.0);
         var line = vec3<f32>(0.0);
-        var line_d = vec3<f32>(0.0);
         for (var dx = 0; dx < 3; dx++) {
             let c = textureLoad(tile2, vec2<i32>(cols[dx], rows[dy]), 0).xyz;
+            line_a += ax[dx] * c;
             line += wx[dx] * c;
-            line_d += dwx[dx] * c;
         }
-        value += wy[dy] * line;
-        grad_x += wy[dy] * line_d;
-        grad_y += dwy[dy] * line;
+        sum += wy[dy] * line_a + gy * dwy[dy] * line;
     }
-    let sd = sqrt(oriented_variance2(wx, wy, dwx, dwy, m));
-    return (m[0] * value + m[1] * grad_x + m[2] * grad_y) / sd;
+    return sum / sqrt(oriented_variance2(ax, wx, wy, dwy, gy));
 }
 
 fn noise2_oriented(p: vec2<f32>, m: vec3<f32>) -> vec3<f32> {
     let ni = i32(textureDimensions(tile2).x);
     let nf = f32(ni);
     let q = vec2<f32>(wrap_coord(p.x, nf), wrap_coord(p.y, nf));
-    let mx = bspline_weights(q.x).mid;
-    let my = bspline_weights(q.y).mid;
-    let cols = vec3<i32>(wrap_index(mx - 1, ni), wrap_index(mx, ni), wrap_index(mx + 1, ni));
-    let rows = vec3<i32>(wrap_index(my - 1, ni), wrap_index(my, ni), wrap_index(my + 1, ni));
-    return oriented_3x3(cols, rows, q, m);
+    let bx = bspline_weights(q.x);
+    let by = bspline_weights(q.y);
+    let cols = vec3<i32>(wrap_index(bx.mid - 1, ni), wrap_index(bx.mid, ni), wrap_index(bx.mid + 1, ni));
+    let rows = vec3<i32>(wrap_index(by.mid - 1, ni), wrap_index(by.mid, ni), wrap_index(by.mid + 1, ni));
+    let ax = mixed_weights(bx.w, bspline_derivative(q.x), m);
+    return oriented_3x3(cols, rows, ax, bx.w, by.w, bspline_derivative(q.y), m[2]);
 }
 
 fn noise2_periodic_oriented(p: vec2<f32>, period: vec2<f32>, m: vec3<f32>) -> vec3<f32> {
@@ -271,11 +255,12 @@ fn noise2_periodic_oriented(p: vec2<f32>, period: vec2<f32>, m: vec3<f32>) -> ve
     let px = i32(pw.x);
     let py = i32(pw.y);
     let q = vec2<f32>(wrap_coord(p.x, pw.x), wrap_coord(p.y, pw.y));
-    let mx = bspline_weights(q.x).mid;
-    let my = bspline_weights(q.y).mid;
-    let cols = vec3<i32>(wrap_period(mx - 1, px), wrap_period(mx, px), wrap_period(mx + 1, px));
-    let rows = vec3<i32>(wrap_period(my - 1, py), wrap_period(my, py), wrap_period(my + 1, py));
-    return oriented_3x3(cols, rows, q, m);
+    let bx = bspline_weights(q.x);
+    let by = bspline_weights(q.y);
+    let cols = vec3<i32>(wrap_period(bx.mid - 1, px), wrap_period(bx.mid, px), wrap_period(bx.mid + 1, px));
+    let rows = vec3<i32>(wrap_period(by.mid - 1, py), wrap_period(by.mid, py), wrap_period(by.mid + 1, py));
+    let ax = mixed_weights(bx.w, bspline_derivative(q.x), m);
+    return oriented_3x3(cols, rows, ax, bx.w, by.w, bspline_derivative(q.y), m[2]);
 }
 
 fn noise3_oriented(p: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
@@ -285,40 +270,32 @@ fn noise3_oriented(p: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
     let bx = bspline_weights(q.x);
     let by = bspline_weights(q.y);
     let bz = bspline_weights(q.z);
-    let dwx = bspline_derivative(q.x);
+    let ax = mixed_weights(bx.w, bspline_derivative(q.x), m);
     let dwy = bspline_derivative(q.y);
+    let gy = m[2];
     let cols = vec3<i32>(
         wrap_index(bx.mid - 1, ni),
         wrap_index(bx.mid, ni),
         wrap_index(bx.mid + 1, ni),
     );
-    var value = vec3<f32>(0.0);
-    var grad_x = vec3<f32>(0.0);
-    var grad_y = vec3<f32>(0.0);
+    var sum = vec3<f32>(0.0);
     for (var dz = 0; dz < 3; dz++) {
         let slab = wrap_index(bz.mid + dz - 1, ni);
         var plane = vec3<f32>(0.0);
-        var plane_dx = vec3<f32>(0.0);
-        var plane_dy = vec3<f32>(0.0);
         for (var dy = 0; dy < 3; dy++) {
             let row = wrap_index(by.mid + dy - 1, ni);
+            var line_a = vec3<f32>(0.0);
             var line = vec3<f32>(0.0);
-            var line_d = vec3<f32>(0.0);
             for (var dx = 0; dx < 3; dx++) {
                 let c = tile3_texel(vec3<i32>(cols[dx], row, slab));
+                line_a += ax[dx] * c;
                 line += bx.w[dx] * c;
-                line_d += dwx[dx] * c;
             }
-            plane += by.w[dy] * line;
-            plane_dx += by.w[dy] * line_d;
-            plane_dy += dwy[dy] * line;
+            plane += by.w[dy] * line_a + gy * dwy[dy] * line;
         }
-        value += bz.w[dz] * plane;
-        grad_x += bz.w[dz] * plane_dx;
-        grad_y += bz.w[dz] * plane_dy;
+        sum += bz.w[dz] * plane;
     }
-    let sd = sqrt(oriented_variance3(bx.w, by.w, bz.w, dwx, dwy, m));
-    return (m[0] * value + m[1] * grad_x + m[2] * grad_y) / sd;
+    return sum / sqrt(oriented_variance3(ax, bx.w, by.w, bz.w, dwy, gy));
 }
 
 fn band_fade(band: u32, log2_footprint: f32) -> f32 {

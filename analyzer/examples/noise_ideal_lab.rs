@@ -198,6 +198,38 @@ fn octave_box_field(chan: &[f32], w: usize, h: usize, seed: u32, c: usize) -> Ve
     box_field(chan, w, h, seed, c, 1.0, 1)
 }
 
+/// The signed frequency (cycles per pixel) of FFT index `i` of a `w × h` image.
+fn frequency(i: usize, w: usize, h: usize) -> (f64, f64) {
+    let signed = |k: usize, n: usize| if k <= n / 2 { k as f64 } else { k as f64 - n as f64 } / n as f64;
+    (signed(i % w, w), signed(i / w, h))
+}
+
+/// Channel `c`'s random phases of `seed` (white Gaussian noise's spectrum) with the modulus
+/// `amplitude(i)` at FFT index `i` (`None`: zero), back to a real field.
+fn random_phase_field(
+    w: usize,
+    h: usize,
+    seed: u32,
+    c: usize,
+    amplitude: impl Fn(usize) -> Option<f32>,
+) -> Vec<f32> {
+    let noise: Vec<f32> = (0..w * h)
+        .map(|i| rng::gaussian(seed, 0x6f63_7462 + c as u32, i as u32) as f32)
+        .collect();
+    let shaped: Vec<_> = fft2_real(&noise, w, h)
+        .iter()
+        .enumerate()
+        .map(|(i, ph)| match amplitude(i) {
+            Some(a) => {
+                let m = ph.norm();
+                if m > 0.0 { ph * (a / m) } else { *ph }
+            }
+            None => ph * 0.0,
+        })
+        .collect();
+    ifft2(shaped, w, h).iter().map(|v| v.re).collect()
+}
+
 /// A Gaussian field with `chan`'s power averaged over boxes of `per_octave` radial bins per
 /// octave, each cut into `wedges` orientation wedges over 180°, random phases of `seed`.
 fn box_field(
@@ -212,17 +244,7 @@ fn box_field(
     let spec = spectrum_real(chan, w, h, true);
     let lowest = ((w.max(h) as f64).log2() * per_octave).floor() as usize;
     let bin = |i: usize| {
-        let (kx, ky) = (i % w, i / w);
-        let fx = if kx <= w / 2 {
-            kx as f64
-        } else {
-            kx as f64 - w as f64
-        } / w as f64;
-        let fy = if ky <= h / 2 {
-            ky as f64
-        } else {
-            ky as f64 - h as f64
-        } / h as f64;
+        let (fx, fy) = frequency(i, w, h);
         let r = (fx * fx + fy * fy).sqrt();
         if r == 0.0 {
             return None;
@@ -244,23 +266,9 @@ fn box_field(
             bins[*j] += 1;
         }
     }
-    let noise: Vec<f32> = (0..w * h)
-        .map(|i| rng::gaussian(seed, 0x6f63_7462 + c as u32, i as u32) as f32)
-        .collect();
-    let phases = fft2_real(&noise, w, h);
-    let shaped: Vec<_> = phases
-        .iter()
-        .zip(&bins_of)
-        .map(|(ph, b)| match b {
-            Some(j) => {
-                let amplitude = (power[*j] / bins[*j].max(1) as f64).sqrt() as f32;
-                let m = ph.norm();
-                if m > 0.0 { ph * (amplitude / m) } else { *ph }
-            }
-            None => ph * 0.0,
-        })
-        .collect();
-    ifft2(shaped, w, h).iter().map(|v| v.re).collect()
+    random_phase_field(w, h, seed, c, |i| {
+        bins_of[i].map(|j| (power[j] / bins[j].max(1) as f64).sqrt() as f32)
+    })
 }
 
 /// An orientation profile per octave, fitted from the octave's angular moment
@@ -298,23 +306,9 @@ fn profiled_fields(
 ) -> [Vec<f32>; 3] {
     let specs: Vec<_> = chans.iter().map(|c| spectrum_real(c, w, h, true)).collect();
     let lowest = (w.max(h) as f64).log2().floor() as usize;
-    let freq = |i: usize| {
-        let (kx, ky) = (i % w, i / w);
-        let fx = if kx <= w / 2 {
-            kx as f64
-        } else {
-            kx as f64 - w as f64
-        } / w as f64;
-        let fy = if ky <= h / 2 {
-            ky as f64
-        } else {
-            ky as f64 - h as f64
-        } / h as f64;
-        (fx, fy)
-    };
     let octave_of: Vec<Option<(usize, f64)>> = (0..w * h)
         .map(|i| {
-            let (fx, fy) = freq(i);
+            let (fx, fy) = frequency(i, w, h);
             let r = (fx * fx + fy * fy).sqrt();
             (r > 0.0).then(|| {
                 (
@@ -376,25 +370,13 @@ fn profiled_fields(
                 power[*j] += s.norm_sqr() as f64;
             }
         }
-        let noise: Vec<f32> = (0..w * h)
-            .map(|i| rng::gaussian(seed, 0x6f63_7462 + c as u32, i as u32) as f32)
-            .collect();
-        let phases = fft2_real(&noise, w, h);
-        let shaped: Vec<_> = phases
-            .iter()
-            .zip(&octave_of)
-            .map(|(ph, o)| match o {
-                Some((j, a)) => {
-                    let (sum, n) = mean_shape[*j];
-                    let g = shape[*j](*a) / (sum / n as f64).max(1e-300);
-                    let amplitude = (power[*j] / n as f64 * g).sqrt() as f32;
-                    let m = ph.norm();
-                    if m > 0.0 { ph * (amplitude / m) } else { *ph }
-                }
-                None => ph * 0.0,
+        random_phase_field(w, h, seed, c, |i| {
+            octave_of[i].map(|(j, a)| {
+                let (sum, n) = mean_shape[j];
+                let g = shape[j](a) / (sum / n as f64).max(1e-300);
+                (power[j] / n as f64 * g).sqrt() as f32
             })
-            .collect();
-        ifft2(shaped, w, h).iter().map(|v| v.re).collect()
+        })
     })
 }
 

@@ -248,8 +248,9 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
     drop(bins);
 
     let nb = num_bands(w, h);
-    let ([p0, p1], [m0, m1]) = band_spectra_packed(pair, w, h, nb, opts.periodic);
-    let ([p2, _], [m2, _]) = band_spectra_packed(single, w, h, nb, opts.periodic);
+    let moments = opts.orientation;
+    let ([p0, p1], [m0, m1]) = band_spectra_packed(pair, w, h, nb, opts.periodic, moments);
+    let ([p2, _], [m2, _]) = band_spectra_packed(single, w, h, nb, opts.periodic, moments);
     let band_powers = [p0, p1, p2];
     let weights = [0, 1, 2].map(|c| estimate_weights(&band_powers[c], opts.estimator));
     // The channels' powers weighted by their variances (Gaussianised channels have unit

@@ -292,7 +292,7 @@ pub fn band_powers_packed(
     nb: usize,
     periodic: bool,
 ) -> [Vec<f64>; 2] {
-    let (p, _) = band_spectra_packed(packed, w, h, nb, periodic);
+    let (p, _) = band_spectra_packed(packed, w, h, nb, periodic, false);
     p
 }
 
@@ -308,13 +308,15 @@ pub struct BandMoments {
     pub square: Vec<f64>,
 }
 
-/// [`band_powers_packed`] with both images' [`BandMoments`].
+/// [`band_powers_packed`] with both images' [`BandMoments`] (zero unless `with_moments`: the
+/// spectrum fits of structured models need only the powers).
 pub fn band_spectra_packed(
     packed: Vec<Complex32>,
     w: usize,
     h: usize,
     nb: usize,
     periodic: bool,
+    with_moments: bool,
 ) -> ([Vec<f64>; 2], [BandMoments; 2]) {
     let spec = spectrum(packed, w, h, periodic);
     let signed_sq = |k: usize, n: usize| {
@@ -363,6 +365,9 @@ pub fn band_spectra_packed(
             let pb = (z - zm).norm_sqr();
             acc[0][band] += mult * pa;
             acc[1][band] += mult * pb;
+            if !with_moments {
+                continue;
+            }
             // cos 2θ and sin 2θ of frequency (fx, fy), the same for its conjugate.
             let f2 = fx2 + fy2[r];
             let (c2, s2) = ((fx2 - fy2[r]) / f2, 2.0 * fx * fy[r] / f2);

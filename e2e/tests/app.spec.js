@@ -2,7 +2,7 @@
 const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
-const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender, innerSquare, reveal, ROOT, dropFile } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats, cliRender, innerSquare, reveal, ROOT, dropFile } = require('./helpers');
 
 test('opens on the sample, already rendered', async ({ page }) => {
   await openApp(page);
@@ -134,23 +134,6 @@ test('dragging the finest band weight raises and removes high-frequency energy',
   // One undo step per drag.
   expect((await state(page)).undo).toBe(2);
 });
-
-// The structure tensor of the luminance: [Σgx², Σgy²] (central differences).
-function gradientEnergy(img) {
-  const { width: w, height: h, data } = img;
-  const lum = (x, y) => {
-    const i = (y * w + x) * 4;
-    return 0.299 * data[i] + 0.587 * data[i + 1] + 0.114 * data[i + 2];
-  };
-  let xx = 0, yy = 0;
-  for (let y = 1; y < h - 1; y++) {
-    for (let x = 1; x < w - 1; x++) {
-      const gx = lum(x + 1, y) - lum(x - 1, y), gy = lum(x, y + 1) - lum(x, y - 1);
-      xx += gx * gx; yy += gy * gy;
-    }
-  }
-  return [xx, yy];
-}
 
 test('band orientations turn the streaks, and their sliders edit them', async ({ page }) => {
   await openApp(page);

@@ -42,13 +42,19 @@ async function grab(page, [x, y, w, h]) {
   return PNG.sync.read(buf);
 }
 
-// Mean of the squared discrete Laplacian of luminance: high-frequency energy.
-function highFrequencyEnergy(img) {
-  const { width: w, height: h, data } = img;
-  const lum = (x, y) => {
+// The luminance of an {width, height, data(RGBA)} image at (x, y).
+function luminance(img) {
+  const { width: w, data } = img;
+  return (x, y) => {
     const i = (y * w + x) * 4;
     return 0.299 * data[i] + 0.587 * data[i + 1] + 0.114 * data[i + 2];
   };
+}
+
+// Mean of the squared discrete Laplacian of luminance: high-frequency energy.
+function highFrequencyEnergy(img) {
+  const { width: w, height: h } = img;
+  const lum = luminance(img);
   let s = 0, n = 0;
   for (let y = 1; y < h - 1; y++) {
     for (let x = 1; x < w - 1; x++) {
@@ -57,6 +63,20 @@ function highFrequencyEnergy(img) {
     }
   }
   return s / n;
+}
+
+// The luminance gradient's energy along x and y: [Σgx², Σgy²] (central differences).
+function gradientEnergy(img) {
+  const { width: w, height: h } = img;
+  const lum = luminance(img);
+  let xx = 0, yy = 0;
+  for (let y = 1; y < h - 1; y++) {
+    for (let x = 1; x < w - 1; x++) {
+      const gx = lum(x + 1, y) - lum(x - 1, y), gy = lum(x, y + 1) - lum(x, y - 1);
+      xx += gx * gx; yy += gy * gy;
+    }
+  }
+  return [xx, yy];
 }
 
 function channelStats(img) {
@@ -201,7 +221,8 @@ async function dropFile(page, filePath, kind) {
 }
 
 module.exports = {
-  expect, openApp, state, waitFrames, grab, highFrequencyEnergy, channelStats, cliRender,
+  expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats,
+  cliRender,
   innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, ROOT,
   dropFile,
 };

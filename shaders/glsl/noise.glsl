@@ -175,35 +175,26 @@ float pair_covariance3(vec2 x, vec2 y, vec2 z) {
         + TILE3_LAGS[3] * x[1] * y[1] * z[1];
 }
 
-float oriented_variance2(vec3 wx, vec3 wy, vec3 dwx, vec3 dwy, vec3 m) {
-    vec2 xx = cross_lags(wx, wx);
-    vec2 yy = cross_lags(wy, wy);
-    vec2 dxdx = cross_lags(dwx, dwx);
-    vec2 dydy = cross_lags(dwy, dwy);
-    vec2 xdx = cross_lags(wx, dwx);
-    vec2 ydy = cross_lags(wy, dwy);
-    return m[0] * m[0] * pair_covariance2(xx, yy)
-        + m[1] * m[1] * pair_covariance2(dxdx, yy)
-        + m[2] * m[2] * pair_covariance2(xx, dydy)
-        + 2.0 * m[0] * m[1] * pair_covariance2(xdx, yy)
-        + 2.0 * m[0] * m[2] * pair_covariance2(xx, ydy)
-        + 2.0 * m[1] * m[2] * pair_covariance2(xdx, ydy);
+// The x weights of the mixture's first separable term, alpha*wx + gx*dwx: the mixture weighs
+// the taps by ax (x) wy + gy*(wx (x) dwy).
+vec3 mixed_weights(vec3 wx, vec3 dwx, vec3 m) {
+    return vec3(
+        m[0] * wx[0] + m[1] * dwx[0],
+        m[0] * wx[1] + m[1] * dwx[1],
+        m[0] * wx[2] + m[1] * dwx[2]);
 }
 
-float oriented_variance3(vec3 wx, vec3 wy, vec3 wz, vec3 dwx, vec3 dwy, vec3 m) {
-    vec2 xx = cross_lags(wx, wx);
-    vec2 yy = cross_lags(wy, wy);
+float oriented_variance2(vec3 ax, vec3 wx, vec3 wy, vec3 dwy, float gy) {
+    return pair_covariance2(cross_lags(ax, ax), cross_lags(wy, wy))
+        + 2.0 * gy * pair_covariance2(cross_lags(ax, wx), cross_lags(wy, dwy))
+        + gy * gy * pair_covariance2(cross_lags(wx, wx), cross_lags(dwy, dwy));
+}
+
+float oriented_variance3(vec3 ax, vec3 wx, vec3 wy, vec3 wz, vec3 dwy, float gy) {
     vec2 zz = cross_lags(wz, wz);
-    vec2 dxdx = cross_lags(dwx, dwx);
-    vec2 dydy = cross_lags(dwy, dwy);
-    vec2 xdx = cross_lags(wx, dwx);
-    vec2 ydy = cross_lags(wy, dwy);
-    return m[0] * m[0] * pair_covariance3(xx, yy, zz)
-        + m[1] * m[1] * pair_covariance3(dxdx, yy, zz)
-        + m[2] * m[2] * pair_covariance3(xx, dydy, zz)
-        + 2.0 * m[0] * m[1] * pair_covariance3(xdx, yy, zz)
-        + 2.0 * m[0] * m[2] * pair_covariance3(xx, ydy, zz)
-        + 2.0 * m[1] * m[2] * pair_covariance3(xdx, ydy, zz);
+    return pair_covariance3(cross_lags(ax, ax), cross_lags(wy, wy), zz)
+        + 2.0 * gy * pair_covariance3(cross_lags(ax, wx), cross_lags(wy, dwy), zz)
+        + gy * gy * pair_covariance3(cross_lags(wx, wx), cross_lags(dwy, dwy), zz);
 }
 
 // The phase averages of the weights' and their derivatives' cross-lags, and the derivative's
@@ -235,75 +226,59 @@ vec3 wavelet_noise3_oriented(vec3 p, vec3 m) {
     BWeights bx = bspline_weights(q.x);
     BWeights by = bspline_weights(q.y);
     BWeights bz = bspline_weights(q.z);
-    vec3 dwx = bspline_derivative(q.x);
+    vec3 ax = mixed_weights(bx.w, bspline_derivative(q.x), m);
     vec3 dwy = bspline_derivative(q.y);
+    float gy = m[2];
     ivec3 cols = ivec3(
         wrap_index(bx.mid - 1, ni),
         wrap_index(bx.mid, ni),
         wrap_index(bx.mid + 1, ni));
-    vec3 value = vec3(0.0);
-    vec3 grad_x = vec3(0.0);
-    vec3 grad_y = vec3(0.0);
+    vec3 sum = vec3(0.0);
     for (int dz = 0; dz < 3; dz++) {
         int slab = wrap_index(bz.mid + dz - 1, ni);
         vec3 plane = vec3(0.0);
-        vec3 plane_dx = vec3(0.0);
-        vec3 plane_dy = vec3(0.0);
         for (int dy = 0; dy < 3; dy++) {
             int row = wrap_index(by.mid + dy - 1, ni);
+            vec3 line_a = vec3(0.0);
             vec3 line = vec3(0.0);
-            vec3 line_d = vec3(0.0);
             for (int dx = 0; dx < 3; dx++) {
                 vec3 c = tile3_texel(ivec3(cols[dx], row, slab));
+                line_a += ax[dx] * c;
                 line += bx.w[dx] * c;
-                line_d += dwx[dx] * c;
             }
-            plane += by.w[dy] * line;
-            plane_dx += by.w[dy] * line_d;
-            plane_dy += dwy[dy] * line;
+            plane += by.w[dy] * line_a + gy * dwy[dy] * line;
         }
-        value += bz.w[dz] * plane;
-        grad_x += bz.w[dz] * plane_dx;
-        grad_y += bz.w[dz] * plane_dy;
+        sum += bz.w[dz] * plane;
     }
-    float sd = sqrt(oriented_variance3(bx.w, by.w, bz.w, dwx, dwy, m));
-    return (m[0] * value + m[1] * grad_x + m[2] * grad_y) / sd;
+    return sum / sqrt(oriented_variance3(ax, bx.w, by.w, bz.w, dwy, gy));
 }
 #else
-// The oriented mixture over the 3x3 coefficients at cols and rows, the wrapped position q.
-vec3 oriented_3x3(ivec3 cols, ivec3 rows, vec2 q, vec3 m) {
-    vec3 wx = bspline_weights(q.x).w;
-    vec3 wy = bspline_weights(q.y).w;
-    vec3 dwx = bspline_derivative(q.x);
-    vec3 dwy = bspline_derivative(q.y);
-    vec3 value = vec3(0.0);
-    vec3 grad_x = vec3(0.0);
-    vec3 grad_y = vec3(0.0);
+// The mixture over the 3x3 coefficients at cols and rows, weighted ax (x) wy + gy*(wx (x) dwy).
+vec3 oriented_3x3(ivec3 cols, ivec3 rows, vec3 ax, vec3 wx, vec3 wy, vec3 dwy, float gy) {
+    vec3 sum = vec3(0.0);
     for (int dy = 0; dy < 3; dy++) {
+        vec3 line_a = vec3(0.0);
         vec3 line = vec3(0.0);
-        vec3 line_d = vec3(0.0);
         for (int dx = 0; dx < 3; dx++) {
             vec3 c = texelFetch(proctex_tile2, ivec2(cols[dx], rows[dy]), 0).xyz;
+            line_a += ax[dx] * c;
             line += wx[dx] * c;
-            line_d += dwx[dx] * c;
         }
-        value += wy[dy] * line;
-        grad_x += wy[dy] * line_d;
-        grad_y += dwy[dy] * line;
+        sum += wy[dy] * line_a + gy * dwy[dy] * line;
     }
-    float sd = sqrt(oriented_variance2(wx, wy, dwx, dwy, m));
-    return (m[0] * value + m[1] * grad_x + m[2] * grad_y) / sd;
+    return sum / sqrt(oriented_variance2(ax, wx, wy, dwy, gy));
 }
 
 vec3 wavelet_noise2_oriented(vec2 p, vec3 m) {
     int ni = textureSize(proctex_tile2, 0).x;
     float nf = float(ni);
     vec2 q = vec2(wrap_coord(p.x, nf), wrap_coord(p.y, nf));
-    int mx = bspline_weights(q.x).mid;
-    int my = bspline_weights(q.y).mid;
-    ivec3 cols = ivec3(wrap_index(mx - 1, ni), wrap_index(mx, ni), wrap_index(mx + 1, ni));
-    ivec3 rows = ivec3(wrap_index(my - 1, ni), wrap_index(my, ni), wrap_index(my + 1, ni));
-    return oriented_3x3(cols, rows, q, m);
+    BWeights bx = bspline_weights(q.x);
+    BWeights by = bspline_weights(q.y);
+    ivec3 cols = ivec3(wrap_index(bx.mid - 1, ni), wrap_index(bx.mid, ni), wrap_index(bx.mid + 1, ni));
+    ivec3 rows = ivec3(wrap_index(by.mid - 1, ni), wrap_index(by.mid, ni), wrap_index(by.mid + 1, ni));
+    vec3 ax = mixed_weights(bx.w, bspline_derivative(q.x), m);
+    return oriented_3x3(cols, rows, ax, bx.w, by.w, bspline_derivative(q.y), m[2]);
 }
 
 vec3 noise2_periodic_oriented(vec2 p, vec2 period, vec3 m) {
@@ -312,11 +287,12 @@ vec3 noise2_periodic_oriented(vec2 p, vec2 period, vec3 m) {
     int px = int(pw.x);
     int py = int(pw.y);
     vec2 q = vec2(wrap_coord(p.x, pw.x), wrap_coord(p.y, pw.y));
-    int mx = bspline_weights(q.x).mid;
-    int my = bspline_weights(q.y).mid;
-    ivec3 cols = ivec3(wrap_period(mx - 1, px), wrap_period(mx, px), wrap_period(mx + 1, px));
-    ivec3 rows = ivec3(wrap_period(my - 1, py), wrap_period(my, py), wrap_period(my + 1, py));
-    return oriented_3x3(cols, rows, q, m);
+    BWeights bx = bspline_weights(q.x);
+    BWeights by = bspline_weights(q.y);
+    ivec3 cols = ivec3(wrap_period(bx.mid - 1, px), wrap_period(bx.mid, px), wrap_period(bx.mid + 1, px));
+    ivec3 rows = ivec3(wrap_period(by.mid - 1, py), wrap_period(by.mid, py), wrap_period(by.mid + 1, py));
+    vec3 ax = mixed_weights(bx.w, bspline_derivative(q.x), m);
+    return oriented_3x3(cols, rows, ax, bx.w, by.w, bspline_derivative(q.y), m[2]);
 }
 #endif
 

@@ -20,7 +20,8 @@
 //! As for the plain band ([`super::phase_variance2`]), the mixture's variance depends on the
 //! sub-texel phase and is divided out exactly: the coefficients' covariance is the tile's
 //! [`TILE2_LAGS`] / [`TILE3_LAGS`], so the variance of any linear combination of the 3×3 taps
-//! is a sum over pairs of separable weight products ([`pair_covariance2`]).
+//! is a sum over pairs of separable weight products ([`pair_covariance2`]); the mixture is two
+//! separable terms ([`mixed_weights`]), so three pairs.
 //!
 //! Every function has a WGSL twin of the same name in `shaders/noise.wgsl` (and GLSL in
 //! `shaders/glsl/noise.glsl`). Same operation order, f32.
@@ -95,53 +96,42 @@ pub fn mixing(angle_deg: f32, strength: f32, grad_var: f32) -> [f32; 3] {
     [(1.0 - s).sqrt(), -a.sin() * beta, a.cos() * beta]
 }
 
-/// The variance of the mixture `m = [α, gx, gy]` of a 2D band (weights `wx`, `wy`) and its
-/// derivatives (weights `dwx`, `dwy`) at one phase.
+/// The x weights of the mixture's first separable term: `α·wx + gx·dwx`. The mixture
+/// `α·N + gx·∂N/∂x + gy·∂N/∂y` weighs the taps by `ax ⊗ wy + gy·(wx ⊗ dwy)`: two separable
+/// terms, so its value takes two row sums and its variance three pair covariances.
 #[inline]
-pub fn oriented_variance2(
-    wx: [f32; 3],
-    wy: [f32; 3],
-    dwx: [f32; 3],
-    dwy: [f32; 3],
-    m: [f32; 3],
-) -> f32 {
-    let xx = cross_lags(wx, wx);
-    let yy = cross_lags(wy, wy);
-    let dxdx = cross_lags(dwx, dwx);
-    let dydy = cross_lags(dwy, dwy);
-    let xdx = cross_lags(wx, dwx);
-    let ydy = cross_lags(wy, dwy);
-    m[0] * m[0] * pair_covariance2(xx, yy)
-        + m[1] * m[1] * pair_covariance2(dxdx, yy)
-        + m[2] * m[2] * pair_covariance2(xx, dydy)
-        + 2.0 * m[0] * m[1] * pair_covariance2(xdx, yy)
-        + 2.0 * m[0] * m[2] * pair_covariance2(xx, ydy)
-        + 2.0 * m[1] * m[2] * pair_covariance2(xdx, ydy)
+pub fn mixed_weights(wx: [f32; 3], dwx: [f32; 3], m: [f32; 3]) -> [f32; 3] {
+    [
+        m[0] * wx[0] + m[1] * dwx[0],
+        m[0] * wx[1] + m[1] * dwx[1],
+        m[0] * wx[2] + m[1] * dwx[2],
+    ]
 }
 
-/// As [`oriented_variance2`] for a 3D band whose derivative lies in the xy plane.
+/// The variance of a 2D mixture at one phase: `ax` from [`mixed_weights`], `wx`, `wy` the
+/// B-spline weights, `dwy` their derivative along y, `gy` the mixture's y derivative weight.
+#[inline]
+pub fn oriented_variance2(ax: [f32; 3], wx: [f32; 3], wy: [f32; 3], dwy: [f32; 3], gy: f32) -> f32 {
+    pair_covariance2(cross_lags(ax, ax), cross_lags(wy, wy))
+        + 2.0 * gy * pair_covariance2(cross_lags(ax, wx), cross_lags(wy, dwy))
+        + gy * gy * pair_covariance2(cross_lags(wx, wx), cross_lags(dwy, dwy))
+}
+
+/// As [`oriented_variance2`] for a 3D band whose derivative lies in the xy plane (`wz` the
+/// z weights).
 #[inline]
 pub fn oriented_variance3(
+    ax: [f32; 3],
     wx: [f32; 3],
     wy: [f32; 3],
     wz: [f32; 3],
-    dwx: [f32; 3],
     dwy: [f32; 3],
-    m: [f32; 3],
+    gy: f32,
 ) -> f32 {
-    let xx = cross_lags(wx, wx);
-    let yy = cross_lags(wy, wy);
     let zz = cross_lags(wz, wz);
-    let dxdx = cross_lags(dwx, dwx);
-    let dydy = cross_lags(dwy, dwy);
-    let xdx = cross_lags(wx, dwx);
-    let ydy = cross_lags(wy, dwy);
-    m[0] * m[0] * pair_covariance3(xx, yy, zz)
-        + m[1] * m[1] * pair_covariance3(dxdx, yy, zz)
-        + m[2] * m[2] * pair_covariance3(xx, dydy, zz)
-        + 2.0 * m[0] * m[1] * pair_covariance3(xdx, yy, zz)
-        + 2.0 * m[0] * m[2] * pair_covariance3(xx, ydy, zz)
-        + 2.0 * m[1] * m[2] * pair_covariance3(xdx, ydy, zz)
+    pair_covariance3(cross_lags(ax, ax), cross_lags(wy, wy), zz)
+        + 2.0 * gy * pair_covariance3(cross_lags(ax, wx), cross_lags(wy, dwy), zz)
+        + gy * gy * pair_covariance3(cross_lags(wx, wx), cross_lags(dwy, dwy), zz)
 }
 
 /// One oriented 2D band of every component at `p` (coefficient units), periodic with period
@@ -151,11 +141,13 @@ pub fn noise2_oriented(tile: &[f32], n: usize, p: [f32; 2], m: [f32; 3]) -> [f32
     let nf = n as f32;
     let ni = n as i32;
     let (px, py) = (wrap_coord(p[0], nf), wrap_coord(p[1], nf));
-    let (mx, _) = bspline_weights(px);
-    let (my, _) = bspline_weights(py);
+    let (mx, wx) = bspline_weights(px);
+    let (my, wy) = bspline_weights(py);
     let rows = [0, 1, 2].map(|d| wrap_index(my + d - 1, ni) * n);
     let cols = [0, 1, 2].map(|d| wrap_index(mx + d - 1, ni));
-    oriented_3x3(tile, n * n, rows, cols, [px, py], m)
+    let ax = mixed_weights(wx, bspline_derivative(px), m);
+    let dwy = bspline_derivative(py);
+    oriented_3x3(tile, n * n, rows, cols, [ax, wx, wy, dwy], m[2])
 }
 
 /// [`noise2_oriented`] with its coefficient indices wrapped at `min(period, n)` per axis, as
@@ -170,50 +162,45 @@ pub fn noise2_periodic_oriented(
 ) -> [f32; COMPONENTS] {
     let pw = [period[0].min(n as f32), period[1].min(n as f32)];
     let (px, py) = (wrap_coord(p[0], pw[0]), wrap_coord(p[1], pw[1]));
-    let (mx, _) = bspline_weights(px);
-    let (my, _) = bspline_weights(py);
+    let (mx, wx) = bspline_weights(px);
+    let (my, wy) = bspline_weights(py);
     let rows = [0, 1, 2].map(|d| wrap_period(my + d - 1, pw[1] as i32) * n);
     let cols = [0, 1, 2].map(|d| wrap_period(mx + d - 1, pw[0] as i32));
-    oriented_3x3(tile, n * n, rows, cols, [px, py], m)
+    let ax = mixed_weights(wx, bspline_derivative(px), m);
+    let dwy = bspline_derivative(py);
+    oriented_3x3(tile, n * n, rows, cols, [ax, wx, wy, dwy], m[2])
 }
 
-/// The mixture over the 3×3 coefficients at `rows` and `cols` of every component, at the
-/// wrapped position `p`, divided by its deviation at the phase.
+/// The mixture over the 3×3 coefficients at `rows` and `cols` of every component, weighted
+/// `ax ⊗ wy + gy·(wx ⊗ dwy)` (`w = [ax, wx, wy, dwy]`), divided by its deviation at the phase.
 #[inline]
 fn oriented_3x3(
     tile: &[f32],
     plane: usize,
     rows: [usize; 3],
     cols: [usize; 3],
-    p: [f32; 2],
-    m: [f32; 3],
+    w: [[f32; 3]; 4],
+    gy: f32,
 ) -> [f32; COMPONENTS] {
-    let (_, wx) = bspline_weights(p[0]);
-    let (_, wy) = bspline_weights(p[1]);
-    let dwx = bspline_derivative(p[0]);
-    let dwy = bspline_derivative(p[1]);
-    let mut value = [0.0f32; COMPONENTS];
-    let mut grad_x = [0.0f32; COMPONENTS];
-    let mut grad_y = [0.0f32; COMPONENTS];
+    let [ax, wx, wy, dwy] = w;
+    let mut sum = [0.0f32; COMPONENTS];
     for dy in 0..3 {
+        let mut line_a = [0.0f32; COMPONENTS];
         let mut line = [0.0f32; COMPONENTS];
-        let mut line_d = [0.0f32; COMPONENTS];
         for dx in 0..3 {
             let i = rows[dy] + cols[dx];
             for k in 0..COMPONENTS {
                 let c = tile[i + k * plane];
+                line_a[k] += ax[dx] * c;
                 line[k] += wx[dx] * c;
-                line_d[k] += dwx[dx] * c;
             }
         }
         for k in 0..COMPONENTS {
-            value[k] += wy[dy] * line[k];
-            grad_x[k] += wy[dy] * line_d[k];
-            grad_y[k] += dwy[dy] * line[k];
+            sum[k] += wy[dy] * line_a[k] + gy * dwy[dy] * line[k];
         }
     }
-    let sd = oriented_variance2(wx, wy, dwx, dwy, m).sqrt();
-    std::array::from_fn(|k| (m[0] * value[k] + m[1] * grad_x[k] + m[2] * grad_y[k]) / sd)
+    let sd = oriented_variance2(ax, wx, wy, dwy, gy).sqrt();
+    sum.map(|v| v / sd)
 }
 
 /// One oriented 3D band of every component at `p` (coefficient units), periodic with period
@@ -227,40 +214,33 @@ pub fn noise3_oriented(tile: &[f32], n: usize, p: [f32; 3], m: [f32; 3]) -> [f32
     let (mx, wx) = bspline_weights(q[0]);
     let (my, wy) = bspline_weights(q[1]);
     let (mz, wz) = bspline_weights(q[2]);
-    let dwx = bspline_derivative(q[0]);
+    let ax = mixed_weights(wx, bspline_derivative(q[0]), m);
     let dwy = bspline_derivative(q[1]);
-    let mut value = [0.0f32; COMPONENTS];
-    let mut grad_x = [0.0f32; COMPONENTS];
-    let mut grad_y = [0.0f32; COMPONENTS];
+    let gy = m[2];
+    let mut sum = [0.0f32; COMPONENTS];
     for dz in 0..3 {
         let slab = wrap_index(mz + dz as i32 - 1, ni) * n * n;
         let mut plane = [0.0f32; COMPONENTS];
-        let mut plane_dx = [0.0f32; COMPONENTS];
-        let mut plane_dy = [0.0f32; COMPONENTS];
         for dy in 0..3 {
             let row = slab + wrap_index(my + dy as i32 - 1, ni) * n;
+            let mut line_a = [0.0f32; COMPONENTS];
             let mut line = [0.0f32; COMPONENTS];
-            let mut line_d = [0.0f32; COMPONENTS];
             for dx in 0..3 {
                 let i = row + wrap_index(mx + dx as i32 - 1, ni);
                 for k in 0..COMPONENTS {
                     let c = tile[i + k * volume];
+                    line_a[k] += ax[dx] * c;
                     line[k] += wx[dx] * c;
-                    line_d[k] += dwx[dx] * c;
                 }
             }
             for k in 0..COMPONENTS {
-                plane[k] += wy[dy] * line[k];
-                plane_dx[k] += wy[dy] * line_d[k];
-                plane_dy[k] += dwy[dy] * line[k];
+                plane[k] += wy[dy] * line_a[k] + gy * dwy[dy] * line[k];
             }
         }
         for k in 0..COMPONENTS {
-            value[k] += wz[dz] * plane[k];
-            grad_x[k] += wz[dz] * plane_dx[k];
-            grad_y[k] += wz[dz] * plane_dy[k];
+            sum[k] += wz[dz] * plane[k];
         }
     }
-    let sd = oriented_variance3(wx, wy, wz, dwx, dwy, m).sqrt();
-    std::array::from_fn(|k| (m[0] * value[k] + m[1] * grad_x[k] + m[2] * grad_y[k]) / sd)
+    let sd = oriented_variance3(ax, wx, wy, wz, dwy, gy).sqrt();
+    sum.map(|v| v / sd)
 }
