@@ -42,7 +42,7 @@ struct MorphKey {
 
 // The structured model along (a half of) a segment, from u = 0 to u = 1.
 struct MorphStructure {
-    // pattern kind (0: the noise model, nothing to do), ramp stops, tone knots (0: no curve),
+    // pattern kind (0: the noise model, only its tone curve), ramp stops, tone knots (0: none),
     // flags: 1 the pattern interpolates (else `transform` and `values_a` hold), 2 the ramp at
     // u = 0 is the flat mean colour, 4 the ramp at u = 1 is, 8 no tone curve at u = 0
     info: vec4<u32>,
@@ -70,7 +70,8 @@ struct MorphSegment {
     b: MorphKey,
     // bands, knots, solid (0/1), histogram (0/1) of the blend
     counts: vec4<u32>,
-    // x: 0 both ends noise models, 1 one pattern family (`first` all the way), 2 a cross-fade
+    // x: 0 both ends noise models without tone curves, 1 one pattern family or two noise
+    // models with a tone curve (`first` all the way), 2 a cross-fade
     // (`first` for t < ½, `second` after)
     mode: vec4<u32>,
     first: MorphStructure,
@@ -199,6 +200,8 @@ fn morph(seg: MorphSegment, t: f32) -> Params {
 fn morph_structure(st: MorphStructure, u: f32, p: ptr<function, Params>) {
     let kind = st.info.x;
     if (kind == 0u) {
+        // The noise model: no pattern or ramp, only its own tone curve (if any).
+        lerp_tones(st, u, p);
         return;
     }
     (*p).pattern = vec4<u32>(kind, st.info.y, MORPH_SEED, 0u);

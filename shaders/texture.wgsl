@@ -47,8 +47,8 @@ fn texture_noise(u: vec3<f32>, log2_fp: f32) -> vec3<f32> {
 }
 
 // The colour of the three channels' noise values g on the structured models' ramp colour base
-// (ignored by the noise model): histogram matching, contrast, back to RGB, then the structured
-// models' output tone curve.
+// (ignored by the noise model): histogram matching, contrast, back to RGB, then the model's
+// output tone curve.
 fn colour(g: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
     var rgb = params.mean.xyz;
     if (params.pattern.x != 0u) {
@@ -77,7 +77,7 @@ fn colour(g: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
     return rgb;
 }
 
-// The output tone curve of RGB channel c at v (structured models): the Hermite spline through
+// The output tone curve of RGB channel c at v (either model): the Hermite spline through
 // knots evenly spaced over [lo, hi], clamped to its end knots outside.
 fn tone_eval(c: u32, v: f32) -> f32 {
     let k = params.pattern.w - 1u;

@@ -156,8 +156,11 @@ struct Model {
 }
 
 fn model_of(src: &Photo, seed: u32) -> Model {
+    // Lagae's model without the output tone curve: the ladders measure what comes before it
+    // (the curve's own effect is measured in the product, `proctex fidelity --no-tone`).
     let opts = Options {
         seed,
+        tone: false,
         ..Options::default()
     };
     let params = analyze_photo(src, &opts).expect("analysis").params;

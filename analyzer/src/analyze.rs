@@ -14,6 +14,7 @@ use rustfft::num_complex::Complex32;
 
 use crate::histogram::{ChannelStats, RANK_BINS, RankMap};
 use crate::input::{Crop, Photo};
+use crate::noise_tone::{HISTOGRAM_INTERVALS, HistogramCandidate, allocate};
 use crate::orientation;
 use crate::params::{
     Colour, FORMAT, Histogram, MAX_KNOTS, Model, NoiseModel, Params, Source, Transform,
@@ -40,6 +41,9 @@ pub struct Options {
     /// Fit each band's orientation ([`crate::orientation`]); off: every band isotropic, as in
     /// Lagae et al.
     pub orientation: bool,
+    /// Fit the noise model's output tone curve ([`crate::noise_tone`]; only with the
+    /// histogram on); off: Lagae's independent channels alone.
+    pub tone: bool,
 }
 
 impl Default for Options {
@@ -53,6 +57,7 @@ impl Default for Options {
             estimator: Estimator::Deconvolved,
             periodic: true,
             orientation: true,
+            tone: true,
         }
     }
 }
@@ -223,6 +228,32 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
         knots[c] = k;
         maps[c] = opts.histogram.then_some(map);
     }
+    // The knot sets the output tone curve's allocation tries: `opts.knots` and fewer, each of
+    // the whole image and of its top and bottom halves (the allocation's two folds).
+    let candidates: Vec<HistogramCandidate> = if opts.tone && opts.histogram {
+        let half_counts = half_rank_counts(&bins, w, h);
+        let mut ks: Vec<usize> = vec![opts.knots];
+        ks.extend(HISTOGRAM_INTERVALS.iter().filter(|&&k| k < opts.knots));
+        ks.into_iter()
+            .map(|k| {
+                let of = |counts: &[Vec<u32>; 3], n: usize| {
+                    [0, 1, 2].map(|c| {
+                        let st = ChannelStats { n, ..stats[c] };
+                        RankMap::from_counts(&counts[c], &st, k).1
+                    })
+                };
+                HistogramCandidate {
+                    whole: of(&counts, n),
+                    halves: [
+                        of(&half_counts[0], (h / 2) * w),
+                        of(&half_counts[1], (h - h / 2) * w),
+                    ],
+                }
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     // Channels 0 and 1 as real and imaginary part of one complex image, channel 2 alone.
     let (pair, single): (Vec<Complex32>, Vec<Complex32>) = match &maps {
         [Some(m0), Some(m1), Some(m2)] => bins
@@ -270,7 +301,7 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
         Vec::new()
     };
 
-    let params = Params {
+    let mut params = Params {
         format: FORMAT.into(),
         seed: opts.seed,
         solid: false,
@@ -290,9 +321,19 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
                 knots,
             },
             orientation,
+            tone: None,
         }),
         source: None,
     };
+    // The curve is a second round of Lagae's histogram matching: off with it.
+    if opts.tone
+        && opts.histogram
+        && let (Some(a), Model::Noise(n)) =
+            (allocate(photo, &params, &candidates), &mut params.model)
+    {
+        n.histogram.knots = a.knots;
+        n.tone = a.tone;
+    }
     Analysis {
         params,
         band_powers,
@@ -301,6 +342,20 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
 }
 
 /// The noise model of a `side²` synthetic photo of hash noise (`seed`), for tests.
+/// The rank-bin counts of the three channels over the image's top rows (`h / 2`) and over the
+/// rest, from each pixel's bins.
+fn half_rank_counts(bins: &[[u16; 3]], w: usize, h: usize) -> [[Vec<u32>; 3]; 2] {
+    let mut out: [[Vec<u32>; 3]; 2] =
+        std::array::from_fn(|_| std::array::from_fn(|_| vec![0u32; RANK_BINS]));
+    for (i, b) in bins.iter().enumerate() {
+        let half = usize::from(i / w >= h / 2);
+        for c in 0..3 {
+            out[half][c][b[c] as usize] += 1;
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 pub(crate) fn hash_noise_params(side: u32, seed: u32) -> Params {
     let pixels = (0..side * side)

@@ -81,78 +81,7 @@ pub fn radial_spectrum(p: &Photo) -> Vec<f64> {
     out
 }
 
-/// Quantile function of `v` at `count` mid-probabilities.
-fn quantiles(mut v: Vec<f32>, count: usize) -> Vec<f64> {
-    crate::radix::sort(&mut v);
-    let n = v.len();
-    (0..count)
-        .map(|i| {
-            let pos = (i as f64 + 0.5) / count as f64 * (n - 1) as f64;
-            let k = pos.floor() as usize;
-            let f = pos - k as f64;
-            v[k] as f64 * (1.0 - f) + v[(k + 1).min(n - 1)] as f64 * f
-        })
-        .collect()
-}
-
-fn directions() -> Vec<[f32; 3]> {
-    let mut d = vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    for (a, b) in [(0, 1), (0, 2), (1, 2)] {
-        for s in [1.0f32, -1.0] {
-            let mut v = [0.0f32; 3];
-            v[a] = std::f32::consts::FRAC_1_SQRT_2;
-            v[b] = s * std::f32::consts::FRAC_1_SQRT_2;
-            d.push(v);
-        }
-    }
-    let k = 1.0 / 3.0f32.sqrt();
-    for (sy, sz) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
-        d.push([k, sy * k, sz * k]);
-    }
-    d
-}
-
-/// Sliced Wasserstein-1 distance between the colour distributions of `a` and `b`.
-pub fn colour_distance(a: &Photo, b: &Photo) -> f64 {
-    ColourQuantiles::of(a).distance(&ColourQuantiles::of(b))
-}
-
-/// The quantile functions of an image's colours projected on [`colour_distance`]'s directions:
-/// what the distance compares, computed once for an image compared many times.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ColourQuantiles(Vec<Vec<f64>>);
-
-impl ColourQuantiles {
-    /// The quantiles of `p`.
-    pub fn of(p: &Photo) -> ColourQuantiles {
-        ColourQuantiles(
-            directions()
-                .iter()
-                .map(|d| {
-                    let proj: Vec<f32> = p
-                        .pixels
-                        .iter()
-                        .map(|c| c[0] * d[0] + c[1] * d[1] + c[2] * d[2])
-                        .collect();
-                    quantiles(proj, 512)
-                })
-                .collect(),
-        )
-    }
-
-    /// [`colour_distance`] between the two images these quantiles came from.
-    pub fn distance(&self, other: &ColourQuantiles) -> f64 {
-        let total: f64 = self
-            .0
-            .iter()
-            .zip(&other.0)
-            .map(|(qa, qb)| {
-                qa.iter().zip(qb).map(|(x, y)| (x - y).abs()).sum::<f64>() / qa.len() as f64
-            })
-            .sum();
-        total / self.0.len() as f64
-    }
-}
+pub use crate::colour::{ColourQuantiles, colour_distance};
 
 /// The structure distance: the weighted distance ([`Db::distance`] of the shipped database)
 /// between the Gabor descriptors ([`crate::gabor`]) of the two images' luminance, centre

@@ -36,6 +36,7 @@ pub mod specks;
 
 // Layer: the noise model's analysis (Lagae: colour, histogram, spectrum).
 pub mod analyze;
+pub mod noise_tone;
 pub mod orientation;
 pub mod spectrum;
 

@@ -170,6 +170,7 @@ pub fn morph(a: &Params, b: &Params, t: f32) -> Result<Params> {
     let enabled = ma.histogram.enabled || mb.histogram.enabled;
     let noise = NoiseModel {
         orientation: morph_orientation(ma, mb, bands, t),
+        tone: None,
         weights,
         histogram: Histogram {
             enabled,
@@ -216,11 +217,15 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
             })
             .collect()
     };
-    let tone_of = |m: &Model| match m {
-        Model::Structured(s) => s.tone.clone().filter(|t| t.enabled),
-        Model::Noise(_) => None,
-    };
+    let tone_of = |m: &Model| m.tone().filter(|t| t.enabled).cloned();
     let (ta, tb) = (tone_of(&a.model), tone_of(&b.model));
+    // A noise model's own output tone curve fades like a structured model's.
+    let noise_with = |tone: Option<Tone>| {
+        Model::Noise(NoiseModel {
+            tone,
+            ..noise.clone()
+        })
+    };
     let structured = |pattern: Pattern, ramp: Vec<RampStop>, tone: Option<Tone>| {
         Model::Structured(crate::params::StructuredModel {
             pattern,
@@ -230,7 +235,7 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
         })
     };
     match (&a.model, &b.model) {
-        (Model::Noise(_), Model::Noise(_)) => Model::Noise(noise.clone()),
+        (Model::Noise(_), Model::Noise(_)) => noise_with(lerp_tones(ta.as_ref(), tb.as_ref(), t)),
         (Model::Structured(sa), Model::Structured(sb)) if sa.pattern.kind == sb.pattern.kind => {
             let (pa, pb) = (&sa.pattern, &sb.pattern);
             let mut pattern = pa.clone();
@@ -252,7 +257,7 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
                 lerp_ramps(&sa.ramp, &flat(&sa.ramp), 2.0 * t),
                 lerp_tones(ta.as_ref(), None, 2.0 * t),
             ),
-            Model::Noise(_) => Model::Noise(noise.clone()),
+            Model::Noise(_) => noise_with(lerp_tones(ta.as_ref(), None, 2.0 * t)),
         },
         _ => match &b.model {
             Model::Structured(sb) => structured(
@@ -260,7 +265,7 @@ fn morph_structure(a: &Params, b: &Params, t: f32, mean: [f32; 3], noise: NoiseM
                 lerp_ramps(&flat(&sb.ramp), &sb.ramp, 2.0 * t - 1.0),
                 lerp_tones(None, tb.as_ref(), 2.0 * t - 1.0),
             ),
-            Model::Noise(_) => Model::Noise(noise.clone()),
+            Model::Noise(_) => noise_with(lerp_tones(None, tb.as_ref(), 2.0 * t - 1.0)),
         },
     }
 }

@@ -194,6 +194,14 @@ impl Tone {
 }
 
 impl Model {
+    /// The output tone curve, enabled or not: the noise model's or the structured model's.
+    pub fn tone(&self) -> Option<&Tone> {
+        match self {
+            Model::Noise(n) => n.tone.as_ref(),
+            Model::Structured(s) => s.tone.as_ref(),
+        }
+    }
+
     /// The noise layer: the whole model for noise, the residual for structured models.
     pub fn noise_layer(&self) -> &NoiseModel {
         match self {
@@ -243,6 +251,15 @@ pub struct NoiseModel {
     /// load unchanged); otherwise one entry per band.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub orientation: Vec<BandOrientation>,
+    /// The noise model's output tone curve per RGB channel, applied after the decorrelated
+    /// channels are rotated back (absent: none; documents from before it load unchanged). The
+    /// histogram spline matches the photo's distribution along the decorrelated axes; this
+    /// curve then matches it along the RGB axes, one round of iterative distribution transfer
+    /// (Pitié et al. 2005), which recovers some of the channels' joint distribution that
+    /// independent channels lose ([`crate::noise_tone`]). A structured model's residual has
+    /// none: the structured model's own curve applies last.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tone: Option<Tone>,
 }
 
 /// The orientation of one band: its power follows `1 + s·cos 2(θ − θ₀)` with `θ₀` across the
@@ -504,6 +521,9 @@ impl NoiseModel {
                 ));
             }
         }
+        if let Some(tone) = &self.tone {
+            tone.validate(&format!("{at}.tone"))?;
+        }
         Ok(())
     }
 }
@@ -554,6 +574,12 @@ impl StructuredModel {
         }
         if let Some(tone) = &self.tone {
             tone.validate(&format!("{at}.tone"))?;
+        }
+        if self.residual.tone.is_some() {
+            return Err(Error::params(
+                format!("{at}.residual.tone"),
+                "a residual has no tone curve of its own (the structured model's `tone` applies last)",
+            ));
         }
         self.residual.validate(&format!("{at}.residual"))
     }
@@ -607,6 +633,7 @@ pub fn pattern_shell(pattern: Pattern, seed: u32, solid: bool) -> Params {
                     knots: [vec![0.0, 0.0], vec![0.0, 0.0], vec![0.0, 0.0]],
                 },
                 orientation: Vec::new(),
+                tone: None,
             },
             tone: None,
         }),

@@ -124,16 +124,16 @@ impl Prepared {
                 let stop = m.ramp[i.min(m.ramp.len() - 1)];
                 p.ramp[i] = [stop.rgb[0], stop.rgb[1], stop.rgb[2], stop.at];
             }
-            if let Some(tone) = m.tone.as_ref().filter(|t| t.enabled) {
-                p.pattern[3] = tone.knots[0].len() as u32;
-                for c in 0..3 {
-                    let [lo, hi] = tone.range[c];
-                    p.tone_range[0][c] = lo;
-                    p.tone_range[1][c] = 1.0 / (hi - lo);
-                    let k = &tone.knots[c];
-                    p.tone_knots[c][..k.len()].copy_from_slice(k);
-                    p.tone_tangents[c][..k.len()].copy_from_slice(&fc_tangents(k));
-                }
+        }
+        if let Some(tone) = params.model.tone().filter(|t| t.enabled) {
+            p.pattern[3] = tone.knots[0].len() as u32;
+            for c in 0..3 {
+                let [lo, hi] = tone.range[c];
+                p.tone_range[0][c] = lo;
+                p.tone_range[1][c] = 1.0 / (hi - lo);
+                let k = &tone.knots[c];
+                p.tone_knots[c][..k.len()].copy_from_slice(k);
+                p.tone_tangents[c][..k.len()].copy_from_slice(&fc_tangents(k));
             }
         }
         for j in 0..MAX_BANDS {
@@ -382,7 +382,7 @@ pub(crate) fn band_noise(prep: &Prepared, tile: &Tile, j: usize, u: [f32; 3]) ->
 
 /// The colour of the three channels' noise values `g` on the structured models' ramp colour
 /// `base` (ignored by the noise model): histogram matching (inverse CDF spline), contrast, back
-/// to RGB about the mean, then the structured models' output tone curve.
+/// to RGB about the mean, then the model's output tone curve.
 #[inline]
 pub fn colour(prep: &Prepared, g: [f32; 3], base: [f32; 3]) -> [f32; 3] {
     let mut rgb = prep.mean;
@@ -418,7 +418,7 @@ pub fn colour(prep: &Prepared, g: [f32; 3], base: [f32; 3]) -> [f32; 3] {
     rgb
 }
 
-/// The output tone curve of RGB channel `c` at `v` (structured models; see
+/// The output tone curve of RGB channel `c` at `v` (see
 /// [`crate::params::Tone`]).
 #[inline]
 pub fn tone_eval(prep: &Prepared, c: usize, v: f32) -> f32 {

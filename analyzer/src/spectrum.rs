@@ -518,6 +518,7 @@ pub fn measure_leakage(size: usize, seeds: &[u32]) -> Vec<Vec<f64>> {
                         knots: [vec![0.0, 1.0], vec![0.0, 1.0], vec![0.0, 1.0]],
                     },
                     orientation: Vec::new(),
+                    tone: None,
                 }),
                 source: None,
             };

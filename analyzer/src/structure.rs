@@ -43,7 +43,7 @@ use crate::render::pattern::{ramp_rows, structure_image};
 use crate::render::{Fields, render_with_fields};
 use crate::two_tone::two_tone;
 
-mod tone;
+pub(crate) mod tone;
 pub use tone::{TONE_KNOTS, TONE_SEEDS, fit_tone};
 use tone::{fit_tone_rendered, with_tone_applied};
 
@@ -606,7 +606,12 @@ fn fit_structured_gains(
             })
             .collect(),
     };
-    let mut analysis = analyze_prepared(&residual, opts);
+    // The residual has no tone curve of its own (the structured model's applies last).
+    let residual_opts = Options {
+        tone: false,
+        ..*opts
+    };
+    let mut analysis = analyze_prepared(&residual, &residual_opts);
     let mut noise = match &analysis.params.model {
         Model::Noise(nm) => nm.clone(),
         Model::Structured(s) => s.residual.clone(),

@@ -72,7 +72,12 @@ fn morphs_are_exact_at_the_ends_valid_and_smooth() {
     no_hist.transform.scale = 3.0;
     no_hist.transform.rotation_deg = 170.0;
     no_hist.colour.contrast = 1.5;
+    // The rock's output tone curve fading out towards a texture without one.
+    let mut plain = grass.clone();
+    plain.model.noise_layer_mut().tone = None;
+    assert!(rock.model.tone().is_some());
     for (name, a, b) in [
+        ("rock → grass without its tone curve", &rock, &plain),
         ("rock → grass", &rock, &grass),
         ("grass → blackrock (7 vs 8 bands)", &grass, &black),
         (

@@ -2,7 +2,7 @@
 const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
-const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats, cliRender, innerSquare, reveal, ROOT, dropFile } = require('./helpers');
+const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats, cliRender, innerSquare, reveal, clickWidget, ROOT, dropFile } = require('./helpers');
 
 test('opens on the sample, already rendered', async ({ page }) => {
   await openApp(page);
@@ -165,6 +165,36 @@ test('band orientations turn the streaks, and their sliders edit them', async ({
   const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   expect(after.model.orientation[1].strength).toBe(0);
   expect(after.model.orientation[2].strength).toBe(1);
+});
+
+test("the noise model's output tone curve recolours the texture and its checkbox turns it off", async ({ page }) => {
+  await openApp(page);
+  const square = innerSquare((await state(page)).widgets.texture, 256);
+  const base = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(base.model.kind).toBe('noise');
+  const plain = structuredClone(base);
+  delete plain.model.tone;
+  await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(plain));
+  await waitFrames(page, 3);
+  const before = channelStats(await grab(page, square));
+  // A curve that maps every red value to 0.9 and leaves green and blue alone (the identity).
+  const p = structuredClone(plain);
+  const identity = [0, 0.25, 0.5, 0.75, 1];
+  p.model.tone = { enabled: true, range: [[0, 1], [0, 1], [0, 1]], knots: [identity.map(() => 0.9), identity, identity] };
+  await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(p));
+  await waitFrames(page, 3);
+  const toned = channelStats(await grab(page, square));
+  // 0.9 is 230 in 8 bits (sRGB-encoded output, as the photo).
+  expect(Math.abs(toned[0].mean - 229.5)).toBeLessThan(2);
+  expect(toned[0].sd).toBeLessThan(1);
+  expect(Math.abs(toned[1].mean - before[1].mean)).toBeLessThan(1);
+  await reveal(page, 'tone');
+  await clickWidget(page, 'tone');
+  await waitFrames(page, 3);
+  const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(after.model.tone.enabled).toBe(false);
+  const off = channelStats(await grab(page, square));
+  expect(Math.abs(off[0].mean - before[0].mean)).toBeLessThan(1);
 });
 
 test('wheel zooms and drag pans the view', async ({ page }) => {

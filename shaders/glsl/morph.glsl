@@ -35,7 +35,8 @@ struct MorphSegment {
     MorphKey a;
     MorphKey b;
     uvec4 counts;       // bands, knots, solid (0/1), histogram (0/1) of the blend
-    uvec4 mode;         // x: 0 noise models, 1 one pattern family, 2 a cross-fade
+    uvec4 mode;         // x: 0 noise models without tone curves, 1 one pattern family (or
+                        // noise models with one), 2 a cross-fade
     MorphStructure first;
     MorphStructure second;
 };
@@ -139,6 +140,8 @@ void lerp_tones(MorphStructure st, float u, inout Params p) {
 void morph_structure(MorphStructure st, float u, inout Params p) {
     uint kind = st.info.x;
     if (kind == 0u) {
+        // The noise model: no pattern or ramp, only its own tone curve (if any).
+        lerp_tones(st, u, p);
         return;
     }
     p.pattern = uvec4(kind, st.info.y, MORPH_SEED, 0u);

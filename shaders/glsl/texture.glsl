@@ -44,7 +44,7 @@ vec3 texture_noise(vec3 u, float log2_fp) {
     return sum;
 }
 
-// The output tone curve of RGB channel c at v (structured models): the Hermite spline through
+// The output tone curve of RGB channel c at v (either model): the Hermite spline through
 // knots evenly spaced over [lo, hi], clamped to its end knots outside.
 float tone_eval(int c, float v) {
     uint k = params.pattern.w - 1u;
@@ -56,8 +56,8 @@ float tone_eval(int c, float v) {
 }
 
 // The colour of the three channels' noise values g on the structured models' ramp colour base
-// (ignored by the noise model): histogram matching, contrast, back to RGB, then the structured
-// models' output tone curve.
+// (ignored by the noise model): histogram matching, contrast, back to RGB, then the model's
+// output tone curve.
 vec3 colour(vec3 g, vec3 base) {
     vec3 rgb = params.mean.xyz;
     if (params.pattern.x != 0u) {

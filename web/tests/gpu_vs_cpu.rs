@@ -209,6 +209,8 @@ fn structured(base: &Params, kind: proctex::pattern::PatternKind) -> Params {
     use proctex::pattern::{Pattern, RampStop};
     let mut p = base.clone();
     let mut residual = base.model.noise_layer().clone();
+    // The structured model's curve below applies last; a residual has none of its own.
+    residual.tone = None;
     for w in residual.weights.iter_mut().flatten() {
         *w *= 0.4;
     }
@@ -507,6 +509,9 @@ fn exported_morph_renders_the_cpu_morph() {
     let rock = sample_params("stk_rock_mountain_512.png");
     let mut wood = sample_params("stk_wood_planks1_256.png");
     wood.transform.rotation_deg = 300.0;
+    // The rock's output tone curve fades out towards the wood, which has none.
+    wood.model.noise_layer_mut().tone = None;
+    assert!(gravel.model.tone().is_some() && rock.model.tone().is_some());
     // Oriented ends whose streaks turn through 180° (170° → 10°+25°j): the angle keeps turning
     // the shorter way without a jump, on the GPU as on the CPU.
     let keys = vec![oriented(&gravel, 170.0), oriented(&rock, 10.0), wood];

@@ -43,11 +43,22 @@ impl SegmentStructure {
     fn new(a: &Params, b: &Params) -> SegmentStructure {
         use crate::params::Model;
         let tone = |m: &crate::params::StructuredModel| m.tone.clone().filter(|t| t.enabled);
+        let noise_tone = |m: &Model| m.tone().filter(|t| t.enabled).cloned();
         match (&a.model, &b.model) {
-            (Model::Noise(_), Model::Noise(_)) => SegmentStructure {
-                mode: 0,
-                halves: [MorphStructure::NOISE, MorphStructure::NOISE],
-            },
+            (Model::Noise(_), Model::Noise(_)) => {
+                let (ta, tb) = (noise_tone(&a.model), noise_tone(&b.model));
+                if ta.is_none() && tb.is_none() {
+                    SegmentStructure {
+                        mode: 0,
+                        halves: [MorphStructure::NOISE, MorphStructure::NOISE],
+                    }
+                } else {
+                    SegmentStructure {
+                        mode: 1,
+                        halves: [MorphStructure::noise_tone([ta, tb]), MorphStructure::NOISE],
+                    }
+                }
+            }
             (Model::Structured(sa), Model::Structured(sb))
                 if sa.pattern.kind == sb.pattern.kind =>
             {
@@ -72,7 +83,7 @@ impl SegmentStructure {
                         [Some(&sa.ramp), None],
                         [tone(sa), None],
                     ),
-                    Model::Noise(_) => MorphStructure::NOISE,
+                    Model::Noise(_) => MorphStructure::noise_tone([noise_tone(ma), None]),
                 };
                 let second = match mb {
                     Model::Structured(sb) => MorphStructure::new(
@@ -81,7 +92,7 @@ impl SegmentStructure {
                         [None, Some(&sb.ramp)],
                         [None, tone(sb)],
                     ),
-                    Model::Noise(_) => MorphStructure::NOISE,
+                    Model::Noise(_) => MorphStructure::noise_tone([None, noise_tone(mb)]),
                 };
                 SegmentStructure {
                     mode: 2,
@@ -117,6 +128,35 @@ impl MorphStructure {
         tone: [[[0.0; 4]; MAX_TONE_KNOTS]; 2],
     };
 
+    /// The noise model (kind 0: no pattern, no ramp) with its output tone curve blending
+    /// from `t[0]` to `t[1]` (`None`: none).
+    fn noise_tone(t: [Option<crate::params::Tone>; 2]) -> MorphStructure {
+        let mut out = MorphStructure::NOISE;
+        out.set_tones(&t);
+        out.info[3] = (t[0].is_none() as u32) << 3;
+        out
+    }
+
+    /// The tone tables of a blend from `t[0]` to `t[1]` (`None`: none), their knot count in
+    /// `info[2]` (0: neither has a curve).
+    fn set_tones(&mut self, t: &[Option<crate::params::Tone>; 2]) {
+        use crate::morph::tone_grid;
+        if t[0].is_none() && t[1].is_none() {
+            return;
+        }
+        let grid = tone_grid(t[0].as_ref(), t[1].as_ref());
+        self.info[2] = grid.n as u32;
+        for c in 0..3 {
+            let [lo, hi] = grid.range[c];
+            self.tone_range[0][c] = lo;
+            self.tone_range[1][c] = 1.0 / (hi - lo);
+            for k in 0..grid.n {
+                self.tone[0][k][c] = grid.a[c][k];
+                self.tone[1][k][c] = grid.b[c][k];
+            }
+        }
+    }
+
     /// From pattern `moving[0]` to `moving[1]` (the same family; `None` in a cross-fade's half,
     /// whose pattern is `fixed` all the way), ramp `r[0]` to `r[1]` (`None`: the flat ramp at
     /// the blend's mean colour, at the other's stops) and tone curve `t[0]` to `t[1]` (`None`:
@@ -127,7 +167,7 @@ impl MorphStructure {
         r: [Option<&Vec<crate::pattern::RampStop>>; 2],
         t: [Option<crate::params::Tone>; 2],
     ) -> MorphStructure {
-        use crate::morph::{ramp_table, ramp_union, shorter_turn, tone_grid};
+        use crate::morph::{ramp_table, ramp_union, shorter_turn};
         use crate::render::pattern::ramp_rows;
         let mut out = MorphStructure::NOISE;
         let p = moving.unwrap_or([fixed, fixed]);
@@ -163,21 +203,8 @@ impl MorphStructure {
             out.values[2][row][col] = spec.min;
             out.values[3][row][col] = spec.max;
         }
-        let mut tone_knots = 0;
-        if t[0].is_some() || t[1].is_some() {
-            let grid = tone_grid(t[0].as_ref(), t[1].as_ref());
-            tone_knots = grid.n as u32;
-            for c in 0..3 {
-                let [lo, hi] = grid.range[c];
-                out.tone_range[0][c] = lo;
-                out.tone_range[1][c] = 1.0 / (hi - lo);
-                for k in 0..grid.n {
-                    out.tone[0][k][c] = grid.a[c][k];
-                    out.tone[1][k][c] = grid.b[c][k];
-                }
-            }
-        }
-        out.info = [p[0].kind.index(), at.len() as u32, tone_knots, flags];
+        out.set_tones(&t);
+        out.info = [p[0].kind.index(), at.len() as u32, out.info[2], flags];
         out
     }
 

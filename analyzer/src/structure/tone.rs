@@ -68,32 +68,7 @@ pub(super) fn fit_tone_rendered(
             .pixels
         })
         .collect();
-    let mut sorted_photo: [Vec<f32>; 3] = Default::default();
-    for (c, t) in sorted_photo.iter_mut().enumerate() {
-        *t = photo.pixels.iter().map(|p| p[c]).collect();
-        crate::radix::sort(t);
-    }
-    let fit = |seeds: &[usize]| {
-        let mut tone = crate::params::Tone::identity(TONE_KNOTS);
-        for c in 0..3 {
-            let mut r: Vec<f32> = seeds
-                .iter()
-                .flat_map(|&k| renders[k].iter().map(move |p| p[c]))
-                .collect();
-            crate::radix::sort(&mut r);
-            let lo = quantile(&r, 0.002);
-            let hi = quantile(&r, 0.998).max(lo + 1e-3);
-            tone.range[c] = [lo, hi];
-            let mut prev = f32::NEG_INFINITY;
-            for (k, v) in tone.knots[c].iter_mut().enumerate() {
-                let x = lo + (hi - lo) * k as f32 / (TONE_KNOTS - 1) as f32;
-                let f = r.partition_point(|&v| v < x) as f64 / r.len() as f64;
-                prev = quantile(&sorted_photo[c], f.clamp(0.002, 0.998)).max(prev);
-                *v = prev;
-            }
-        }
-        tone
-    };
+    let sorted_photo = crate::noise_tone::sorted_channels(photo);
     // The colour distances on at most 16k pixels (the same ones of every image).
     let stride = n.div_ceil(16_384);
     let sample = |px: &[[f32; 3]]| Photo {
@@ -102,8 +77,7 @@ pub(super) fn fit_tone_rendered(
         pixels: px.iter().step_by(stride).copied().collect(),
     };
     let target = ColourQuantiles::of(&sample(&photo.pixels));
-    let all: Vec<usize> = (0..renders.len()).collect();
-    let tone = fit(&all);
+    let tone = crate::noise_tone::quantile_match(&renders, &sorted_photo, TONE_KNOTS);
     let shown = sample(&renders[0]);
     let loss: Vec<f64> = TONE_STRENGTHS
         .iter()
@@ -176,9 +150,4 @@ fn tone_strength(tone: &crate::params::Tone, lambda: f32) -> crate::params::Tone
         }
     }
     out
-}
-
-/// The sample quantile of sorted `v` at fraction `f` (nearest rank).
-fn quantile(v: &[f32], f: f64) -> f32 {
-    v[((v.len() - 1) as f64 * f).round() as usize]
 }

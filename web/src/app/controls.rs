@@ -77,15 +77,24 @@ fn structure_controls(
         });
     }
     if let Some(tone) = &mut m.tone {
-        let r = ui
-            .checkbox(&mut tone.enabled, "output tone curve")
-            .on_hover_text(
-                "Per RGB channel, maps the synthesis's colour distribution onto the photo's \
-                 (fitted by the analysis; the plot shows output against input, 0 to 1)",
-            );
-        rects.push(("tone".into(), r));
-        tone_plot(ui, tone);
+        tone_controls(ui, tone, rects);
     }
+}
+
+/// The output tone curve's switch and plot (the structured model's, or the noise model's).
+fn tone_controls(
+    ui: &mut egui::Ui,
+    tone: &mut proctex::params::Tone,
+    rects: &mut Vec<(String, egui::Response)>,
+) {
+    let r = ui
+        .checkbox(&mut tone.enabled, "output tone curve")
+        .on_hover_text(
+            "Per RGB channel, maps the synthesis's colour distribution onto the photo's \
+             (fitted by the analysis; the plot shows output against input, 0 to 1)",
+        );
+    rects.push(("tone".into(), r));
+    tone_plot(ui, tone);
 }
 
 impl ProctexApp {
@@ -165,6 +174,9 @@ impl ProctexApp {
             let model = params.model.noise_layer_mut();
             let r = ui.checkbox(&mut model.histogram.enabled, "histogram matching");
             rects.push(("histogram".into(), r));
+            if let Some(tone) = &mut model.tone {
+                tone_controls(ui, tone, &mut rects);
+            }
             let scale = params.transform.scale;
             for (c, weights) in model.weights.iter_mut().enumerate() {
                 ui.separator();

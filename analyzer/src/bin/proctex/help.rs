@@ -45,6 +45,8 @@ OPTIONS:
     --estimator E           deconvolved (default) or lagae (the paper's eq. 9)
     --no-periodic           skip the periodic+smooth decomposition before the FFT
     --isotropic             every noise band isotropic (no fitted orientation), as Lagae
+    --no-tone               no output tone curve on the noise model (its channels
+                            independent, as Lagae)
     --model M               auto (default): the nearest of every candidate below, by texture
                             distance; noise: Lagae's noise model; or a structured family:
                             perlin, turbulence, ridged, grid, brick, cells, planks,

@@ -63,6 +63,7 @@ fn analysis_flag(flag: &str, a: &mut Args, o: &mut Options) -> Result<bool> {
         "--seed" => o.seed = a.parsed(flag)?,
         "--no-periodic" => o.periodic = false,
         "--isotropic" => o.orientation = false,
+        "--no-tone" => o.tone = false,
         "--estimator" => {
             o.estimator = match a.value(flag)?.as_str() {
                 "lagae" => Estimator::Lagae,
