@@ -34,11 +34,9 @@ pub const FIT_SEED: u32 = 0x5eed_0000;
 pub const NOISE_TONE_SEEDS: u32 = 4;
 
 /// Sample points per seed (a regular grid over the photo's extent).
-const SAMPLES_PER_SEED: usize = 4_096;
-
-/// Pixels of each half of the photo that [`allocate`] scores against (a regular subsample):
-/// the distance compares 512 quantiles per direction.
-const PIXELS_PER_HALF: usize = 16_384;
+/// Measured: 4096 per seed (and the halves subsampled to 16k pixels) made the analysis 2× faster
+/// and the dev set's colour ratio worse by 0.038 ± 0.019 (paired).
+const SAMPLES_PER_SEED: usize = 16_384;
 
 /// Numbers a noise-model texture may hold: its band weights, histogram knots, band
 /// orientations, output tone curve and colour block (mean, basis, contrast), as the issue that
@@ -180,15 +178,10 @@ pub fn allocate(
     // half and compared with the other: fitted and scored on the same pixels, a curve matches
     // the three RGB directions of the distance exactly and always looks best.
     let half = photo.height / 2;
-    let halves = [(0, half), (half, photo.height)].map(|(y0, y1)| {
-        let rows = &photo.pixels[(y0 * photo.width) as usize..(y1 * photo.width) as usize];
-        let stride = rows.len().div_ceil(PIXELS_PER_HALF).max(1);
-        let pixels: Vec<[f32; 3]> = rows.iter().step_by(stride).copied().collect();
-        Photo {
-            width: pixels.len() as u32,
-            height: 1,
-            pixels,
-        }
+    let halves = [(0, half), (half, photo.height)].map(|(y0, y1)| Photo {
+        width: photo.width,
+        height: y1 - y0,
+        pixels: photo.pixels[(y0 * photo.width) as usize..(y1 * photo.width) as usize].to_vec(),
     });
     let sorted_halves = [sorted_channels(&halves[0]), sorted_channels(&halves[1])];
     let targets = [
