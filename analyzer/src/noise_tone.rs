@@ -22,15 +22,15 @@ use crate::input::Photo;
 use crate::params::{Params, Tone};
 use crate::render::{Prepared, colour, texture_noise, tile_for};
 
-/// Seed of the first render pooled by [`fit_noise_tone`]: fixed, not the params' own, so that
+/// Seed of the first realisation sampled by [`fit_noise_tone`] and [`allocate`]: fixed, not the params' own, so that
 /// analyses differing only in their seed share the curve (it is a property of the model), and
 /// apart from the seeds a user or the fidelity protocol (seeds 1, 2, …) renders, so that the
 /// curve is measured on realisations it was not fitted to.
 pub const FIT_SEED: u32 = 0x5eed_0000;
 
-/// Renders (seeds [`FIT_SEED`], `FIT_SEED + 1`, …) pooled by [`fit_noise_tone`]: the low-frequency bands
-/// hold few independent features in a photo-sized patch, so one seed's distribution is not the
-/// model's.
+/// Realisations (seeds [`FIT_SEED`], `FIT_SEED + 1`, …) pooled by [`fit_noise_tone`] and
+/// [`allocate`]: the low-frequency bands hold few independent features in a photo-sized patch,
+/// so one seed's distribution is not the model's.
 pub const NOISE_TONE_SEEDS: u32 = 4;
 
 /// Sample points per seed (a regular grid over the photo's extent).
@@ -39,9 +39,9 @@ pub const NOISE_TONE_SEEDS: u32 = 4;
 const SAMPLES_PER_SEED: usize = 16_384;
 
 /// Numbers a noise-model texture may hold: its band weights, histogram knots, band
-/// orientations, output tone curve and colour block (mean, basis, contrast), as the issue that
-/// asked for finer models set it. [`allocate`] spends what the weights, orientations and colour
-/// leave on knots.
+/// orientations, output tone curve and colour block (mean, basis, contrast); a few dozen
+/// numbers is what keeps the model editable with sliders and small in a shader. [`allocate`]
+/// spends what the weights, orientations and colour leave on knots.
 pub const PARAMETER_BUDGET: usize = 100;
 
 /// Knot intervals `K` of the histogram spline that [`allocate`] tries (up to the analysis's
