@@ -77,14 +77,15 @@ pub fn tone_numbers(knots: usize) -> usize {
 fn channel_samples(params: &Params, width: u32, height: u32) -> Vec<[f32; 3]> {
     let n = width as usize * height as usize;
     let stride = ((n as f64 / SAMPLES_PER_SEED as f64).sqrt().floor() as usize).max(1);
-    let mut out = Vec::with_capacity(NOISE_TONE_SEEDS as usize * (n / (stride * stride) + 1));
-    for k in 0..NOISE_TONE_SEEDS {
+    let seeds: Vec<u32> = (0..NOISE_TONE_SEEDS).collect();
+    crate::parallel::map_in_order(&seeds, |&k| {
         let p = Params {
             seed: FIT_SEED + k,
             ..params.clone()
         };
         let (prep, tile) = (Prepared::new(&p), tile_for(&p));
         let scale = params.transform.scale;
+        let mut out = Vec::with_capacity(n / (stride * stride) + 1);
         for y in (0..height).step_by(stride) {
             for x in (0..width).step_by(stride) {
                 // One texel per photo pixel; world units are texels times the scale.
@@ -92,8 +93,9 @@ fn channel_samples(params: &Params, width: u32, height: u32) -> Vec<[f32; 3]> {
                 out.push(texture_noise(&prep, &tile, prep.texel(world), 0.0));
             }
         }
-    }
-    out
+        out
+    })
+    .concat()
 }
 
 /// The colours of `params` (its histogram, no tone curve) at channel noise `samples`.
@@ -211,16 +213,18 @@ pub fn allocate(
         }
         coloured(&p, &samples)
     };
-    // (distance, histogram index, curve knots (0: none)), the best so far.
-    let mut best: Option<(f64, usize, usize)> = None;
-    for (i, candidate) in histograms.iter().enumerate() {
+    // Every candidate's options scored in parallel (native), then reduced in order.
+    let indices: Vec<usize> = (0..histograms.len()).collect();
+    let scored = crate::parallel::map_in_order(&indices, |&i| {
+        let candidate = &histograms[i];
         let used = fixed + 3 * candidate.whole[0].len();
         let room = PARAMETER_BUDGET.saturating_sub(used);
         let tone_knots = (room.saturating_sub(6) / 3).min(MAX_NOISE_TONE_KNOTS);
         // Per fold: the model with the fold's histogram, scored against the other half.
         let folds = [0, 1].map(|fold| with_knots(&candidate.halves[fold]));
         let mut options = Vec::with_capacity(2);
-        if used <= PARAMETER_BUDGET || best.is_none() {
+        // No curve: within the budget, or the first candidate (the analysis's own K) anyway.
+        if used <= PARAMETER_BUDGET || i == 0 {
             let distance: f64 = (0..2)
                 .map(|fold| {
                     ColourQuantiles::of(&clamped(folds[fold].clone())).distance(&targets[1 - fold])
@@ -242,6 +246,11 @@ pub fn allocate(
                 .sum();
             options.push((distance, tone_knots));
         }
+        options
+    });
+    // (distance, histogram index, curve knots (0: none)), the best so far.
+    let mut best: Option<(f64, usize, usize)> = None;
+    for (i, options) in scored.into_iter().enumerate() {
         for (distance, tone_knots) in options {
             if best.is_none_or(|b| distance < b.0) {
                 best = Some((distance, i, tone_knots));
