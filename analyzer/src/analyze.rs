@@ -19,7 +19,7 @@ use crate::orientation;
 use crate::params::{
     Colour, FORMAT, Histogram, MAX_KNOTS, Model, NoiseModel, Params, Source, Transform,
 };
-use crate::spectrum::{Estimator, band_spectra_packed, estimate_weights, num_bands};
+use crate::spectrum::{Estimator, Extras, band_spectra_packed, estimate_weights, num_bands};
 
 /// Analysis options (the CLI flags of `proctex analyze`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,7 +54,7 @@ impl Default for Options {
             histogram: true,
             knots: 10,
             seed: 1,
-            estimator: Estimator::Deconvolved,
+            estimator: Estimator::Rings,
             periodic: true,
             orientation: true,
             tone: true,
@@ -279,11 +279,23 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
     drop(bins);
 
     let nb = num_bands(w, h);
-    let moments = opts.orientation;
-    let ([p0, p1], [m0, m1]) = band_spectra_packed(pair, w, h, nb, opts.periodic, moments);
-    let ([p2, _], [m2, _]) = band_spectra_packed(single, w, h, nb, opts.periodic, moments);
-    let band_powers = [p0, p1, p2];
-    let weights = [0, 1, 2].map(|c| estimate_weights(&band_powers[c], opts.estimator));
+    let extras = Extras {
+        moments: opts.orientation,
+        rings: opts.estimator == Estimator::Rings,
+    };
+    let [s0, s1] = band_spectra_packed(pair, w, h, nb, opts.periodic, extras);
+    let [s2, _] = band_spectra_packed(single, w, h, nb, opts.periodic, extras);
+    let spectra = [s0, s1, s2];
+    let band_powers = spectra.clone().map(|s| s.powers);
+    let weights = [0, 1, 2].map(|c| {
+        let octaves = estimate_weights(&band_powers[c], opts.estimator);
+        if !extras.rings {
+            return octaves;
+        }
+        // The ring fit starts from the octave solve's variances.
+        let start: Vec<f64> = octaves.iter().map(|&v| (v as f64).powi(2)).collect();
+        crate::ring_fit::fit_weights(&spectra[c].rings, w, h, nb, &start)
+    });
     // The channels' powers weighted by their variances (Gaussianised channels have unit
     // variance; raw ones carry theirs already).
     let variance_weight = if opts.histogram {
@@ -294,7 +306,11 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
     let orientation = if opts.orientation {
         orientation::fit(
             &[&band_powers[0], &band_powers[1], &band_powers[2]],
-            &[&m0, &m1, &m2],
+            &[
+                &spectra[0].moments,
+                &spectra[1].moments,
+                &spectra[2].moments,
+            ],
             &variance_weight,
         )
     } else {

@@ -38,6 +38,8 @@ pub mod specks;
 pub mod analyze;
 pub mod noise_tone;
 pub mod orientation;
+mod ring_density_table;
+pub mod ring_fit;
 pub mod spectrum;
 
 // Layer: raster synthesis from the photo itself (Heeger & Bergen: steerable pyramid,

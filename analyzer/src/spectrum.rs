@@ -12,6 +12,9 @@
 //!    of band `i`'s power that lands in octave `j` (the *leakage matrix* `L`, see
 //!    [`measure_leakage`]) and solve `P = L·w²` for `w² ≥ 0` instead. [`Estimator::Lagae`] keeps
 //!    the paper's estimator for comparison.
+//! 3. **Weights fitted on fine rings** ([`crate::ring_fit`], the default): from the deconvolved
+//!    solve, the weights are refined to the photo's radial spectrum on quarter-octave circular
+//!    rings in the log domain, which is what the octaves cannot see.
 //!
 //! Band numbering: index 0 is the finest band, `[1/4, 1/2]` cycles per pixel of the analysed
 //! image; band `j` is `(2^−(j+2), 2^−(j+1)]`; frequencies below the coarsest band fold into it.
@@ -25,14 +28,20 @@ use rustfft::num_complex::Complex32;
 
 use crate::params::MAX_BANDS;
 
+mod leakage;
+pub use leakage::{LEAKAGE_512, LEAKAGE_SEEDS, leakage_matrix, measure_leakage, render_unit_band};
+
 /// How band weights are obtained from band powers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Estimator {
     /// Lagae eq. 9: `w_b = sqrt(P_b / σ²_N)` (with our measured `σ²_N = 1`).
     Lagae,
     /// Solve `P = L·w²`, `w² ≥ 0`, with our measured leakage matrix `L`.
-    #[default]
     Deconvolved,
+    /// Fit the radial spectrum on quarter-octave rings in the log domain
+    /// ([`crate::ring_fit`]), starting from the deconvolved solve.
+    #[default]
+    Rings,
 }
 
 impl Estimator {
@@ -41,6 +50,7 @@ impl Estimator {
         match self {
             Estimator::Lagae => "lagae",
             Estimator::Deconvolved => "deconvolved",
+            Estimator::Rings => "rings",
         }
     }
 }
@@ -292,8 +302,7 @@ pub fn band_powers_packed(
     nb: usize,
     periodic: bool,
 ) -> [Vec<f64>; 2] {
-    let (p, _) = band_spectra_packed(packed, w, h, nb, periodic, false);
-    p
+    band_spectra_packed(packed, w, h, nb, periodic, Extras::default()).map(|b| b.powers)
 }
 
 /// Per band, the angular moment of one image's power: `cos` and `sin` are `Σ P·cos 2θ` and
@@ -308,16 +317,67 @@ pub struct BandMoments {
     pub square: Vec<f64>,
 }
 
-/// [`band_powers_packed`] with both images' [`BandMoments`] (zero unless `with_moments`: the
-/// spectrum fits of structured models need only the powers).
+/// Fine radial bins per octave of the density table and of the photo's ring powers.
+pub const FINE_PER_OCTAVE: usize = 8;
+/// The fine bin of squared radial frequency `f2 = ρ²` (cycles per pixel, `0 < ρ ≤ 2^−½`):
+/// bin `t` holds `ρ ∈ (2^−½−(t+1)/8, 2^−½−t/8]`. In `f32`, as [`band_spectra_packed`] computes `ρ²`,
+/// so that every caller bins a frequency alike.
+#[inline]
+pub fn fine_bin_sq(f2: f32) -> usize {
+    // −4·log2(f2) − 4, floored, from the float's exponent and a comparison of its mantissa
+    // with 2^¼, 2^½ and 2^¾: exact, and a few times cheaper than `log2` in the spectrum loop.
+    const QUARTERS: [f32; 3] = [1.189_207_1, std::f32::consts::SQRT_2, 1.681_792_8];
+    debug_assert!(FINE_PER_OCTAVE == 8 && f2 > 0.0 && f2.is_normal());
+    let bits = f2.to_bits();
+    let exponent = ((bits >> 23) & 0xff) as i32 - 127;
+    let mantissa = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000);
+    let t = if mantissa == 1.0 {
+        -4 * exponent - 4
+    } else {
+        let k = QUARTERS.iter().filter(|&&q| mantissa >= q).count() as i32;
+        -4 * exponent - k - 5
+    };
+    t.max(0) as usize
+}
+
+/// A photo channel's power and bin count per fine radial bin (see [`fine_bin_sq`]), from its
+/// spectrum: what [`crate::ring_fit::fit_weights`] needs. Power in variance units (`Σ |F|² / (w·h)²`), counts in
+/// FFT bins (both of a conjugate pair).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RingPowers {
+    pub power: Vec<f64>,
+    pub count: Vec<f64>,
+}
+
+/// What [`band_spectra_packed`] measures of each of the two images beyond the band powers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Extras {
+    /// The bands' angular moments ([`BandMoments`], for the orientation fit).
+    pub moments: bool,
+    /// The power per fine radial bin ([`RingPowers`], for the ring fit of the weights).
+    pub rings: bool,
+}
+
+/// What [`band_spectra_packed`] returns for each of the two packed images: band powers, and
+/// the [`Extras`] asked for (empty otherwise).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BandSpectra {
+    pub powers: Vec<f64>,
+    pub moments: BandMoments,
+    pub rings: RingPowers,
+}
+
+/// [`band_powers_packed`] with both images' [`Extras`] (the spectrum fits of structured models
+/// need only the powers).
 pub fn band_spectra_packed(
     packed: Vec<Complex32>,
     w: usize,
     h: usize,
     nb: usize,
     periodic: bool,
-    with_moments: bool,
-) -> ([Vec<f64>; 2], [BandMoments; 2]) {
+    extras: Extras,
+) -> [BandSpectra; 2] {
+    let with_moments = extras.moments;
     let spec = spectrum(packed, w, h, periodic);
     let signed_sq = |k: usize, n: usize| {
         let f = k.min(n - k) as f32 / n as f32;
@@ -335,6 +395,14 @@ pub fn band_spectra_packed(
     let bx = axis_bands(w, nb);
     let by = axis_bands(h, nb);
     let mut p = [vec![0.0f64; nb], vec![0.0f64; nb]];
+    let mut rings: [RingPowers; 2] = Default::default();
+    if extras.rings {
+        let fine = fine_bin_sq(1.0 / (w.max(h) as f32).powi(2)) + 1;
+        for r in &mut rings {
+            r.power = vec![0.0; fine];
+            r.count = vec![0.0; fine];
+        }
+    }
     for q in 0..=w / 2 {
         let qm = if q == 0 { 0 } else { w - q };
         let self_row = qm == q;
@@ -365,11 +433,18 @@ pub fn band_spectra_packed(
             let pb = (z - zm).norm_sqr();
             acc[0][band] += mult * pa;
             acc[1][band] += mult * pb;
+            let f2 = fx2 + fy2[r];
+            if extras.rings {
+                let t = fine_bin_sq(f2);
+                for (ring, pw) in rings.iter_mut().zip([pa, pb]) {
+                    ring.power[t] += (mult * pw) as f64;
+                    ring.count[t] += mult as f64;
+                }
+            }
             if !with_moments {
                 continue;
             }
             // cos 2θ and sin 2θ of frequency (fx, fy), the same for its conjugate.
-            let f2 = fx2 + fy2[r];
             let (c2, s2) = ((fx2 - fy2[r]) / f2, 2.0 * fx * fy[r] / f2);
             for (m, pw) in mom.iter_mut().zip([pa, pb]) {
                 m[0][band] += mult * pw * c2;
@@ -397,7 +472,24 @@ pub fn band_spectra_packed(
             m.square[j] /= norm * norm;
         }
     }
-    (p, moments)
+    for ring in &mut rings {
+        ring.power.iter_mut().for_each(|v| *v /= norm);
+    }
+    let [p0, p1] = p;
+    let [m0, m1] = moments;
+    let [r0, r1] = rings;
+    [
+        BandSpectra {
+            powers: p0,
+            moments: m0,
+            rings: r0,
+        },
+        BandSpectra {
+            powers: p1,
+            moments: m1,
+            rings: r1,
+        },
+    ]
 }
 
 /// Band powers of one real image.
@@ -406,57 +498,12 @@ pub fn band_powers(img: &[f32], w: usize, h: usize, nb: usize, periodic: bool) -
     p
 }
 
-/// Seeds averaged by [`measure_leakage`] for [`LEAKAGE_512`].
-pub const LEAKAGE_SEEDS: [u32; 24] = [
-    1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24,
-];
-
-/// The measured leakage matrix at 512² (8 bands, averaged over 24 seeds): `LEAKAGE_512[j][i]` is the power in octave `j`
-/// of a unit-variance noise band `i`. Printed by `cargo run --example leakage`; the test
-/// `leakage_table_is_current` re-measures it. Column 0 (the finest band) meets the Nyquist limit;
-/// the last columns meet the coarse end, where an octave holds only a few FFT bins (band 7:
-/// |k| ≤ 2, band 6: |k| ∈ {3, 4}); columns 1–2 are the scale-free interior.
-#[rustfmt::skip]
-pub const LEAKAGE_512: [[f64; 8]; 8] = [
-    [0.919389, 0.075303, 0.007085, 0.000224, 0.000015, 0.000003, 0.000001, 0.000000],
-    [0.077251, 0.823648, 0.057306, 0.006404, 0.000216, 0.000016, 0.000003, 0.000001],
-    [0.000672, 0.097397, 0.830057, 0.054311, 0.006253, 0.000241, 0.000026, 0.000006],
-    [0.000629, 0.000810, 0.100864, 0.799305, 0.048109, 0.006110, 0.000320, 0.000044],
-    [0.000627, 0.000757, 0.000598, 0.128526, 0.747388, 0.037702, 0.006182, 0.000399],
-    [0.000650, 0.000744, 0.000554, 0.004950, 0.162151, 0.651313, 0.026900, 0.004752],
-    [0.000741, 0.000649, 0.000530, 0.003095, 0.010464, 0.246765, 0.490419, 0.012368],
-    [0.004050, 0.002212, 0.001355, 0.006932, 0.015824, 0.045549, 0.446753, 0.738370],
-];
-
-/// The leakage matrix for `nb` bands, from [`LEAKAGE_512`]. For power-of-two square images a
-/// band's leakage depends only on its distance from the finest band (Nyquist) and from the
-/// coarsest (discrete bins), so column `i` is taken from the measured column at the same distance
-/// from the end it is closer to (interior columns from column 1), shifted along the diagonal.
-/// Power that would land finer than band 0 or coarser than the last band folds into them, as the
-/// analysis folds those frequencies. Other sizes use the same matrix as an approximation.
-pub fn leakage_matrix(nb: usize) -> Vec<Vec<f64>> {
-    let m = LEAKAGE_512.len();
-    let mut l = vec![vec![0.0; nb]; nb];
-    for i in 0..nb {
-        let from_coarse = nb - 1 - i;
-        let mi = if i == 0 {
-            0
-        } else {
-            (m as i64 - 1 - from_coarse as i64).max(1) as usize
-        };
-        for (mj, row) in LEAKAGE_512.iter().enumerate() {
-            let j = (mj as i64 + i as i64 - mi as i64).clamp(0, nb as i64 - 1) as usize;
-            l[j][i] += row[mi];
-        }
-    }
-    l
-}
-
 /// Band weights from band powers.
 pub fn estimate_weights(powers: &[f64], estimator: Estimator) -> Vec<f32> {
     match estimator {
         Estimator::Lagae => powers.iter().map(|&p| p.max(0.0).sqrt() as f32).collect(),
-        Estimator::Deconvolved => {
+        // Without the rings' powers the ring fit has only the octaves: the deconvolved solve.
+        Estimator::Deconvolved | Estimator::Rings => {
             let l = leakage_matrix(powers.len());
             nonneg_solve(&l, powers)
                 .into_iter()
@@ -484,59 +531,6 @@ pub fn nonneg_solve(l: &[Vec<f64>], p: &[f64]) -> Vec<f64> {
         }
     }
     v
-}
-
-/// Measures the leakage matrix of our own noise bands: renders each band alone (unit weight,
-/// channel 0) on a `size × size` grid with the CPU renderer's own per-pixel code at one texel
-/// per pixel, and averages its band powers over `seeds`. Returns `L[j][i]`.
-pub fn measure_leakage(size: usize, seeds: &[u32]) -> Vec<Vec<f64>> {
-    use crate::params::{Colour, FORMAT, Histogram, Model, NoiseModel, Params, Transform};
-    use crate::render::{Prepared, texture_noise, tile_for};
-    let nb = num_bands(size, size);
-    let mut l = vec![vec![0.0; nb]; nb];
-    for &seed in seeds {
-        for i in 0..nb {
-            let mut unit = vec![0.0f32; nb];
-            unit[i] = 1.0;
-            let params = Params {
-                format: FORMAT.into(),
-                seed,
-                solid: false,
-                transform: Transform {
-                    scale: 1.0,
-                    rotation_deg: 0.0,
-                },
-                colour: Colour {
-                    mean: [0.5; 3],
-                    basis: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-                    contrast: 1.0,
-                },
-                model: Model::Noise(NoiseModel {
-                    weights: [unit, vec![0.0; nb], vec![0.0; nb]],
-                    histogram: Histogram {
-                        enabled: false,
-                        knots: [vec![0.0, 1.0], vec![0.0, 1.0], vec![0.0, 1.0]],
-                    },
-                    orientation: Vec::new(),
-                    tone: None,
-                }),
-                source: None,
-            };
-            let prep = Prepared::new(&params);
-            let tile = tile_for(&params);
-            let img: Vec<f32> = (0..size * size)
-                .map(|k| {
-                    let (x, y) = ((k % size) as f32 + 0.5, (k / size) as f32 + 0.5);
-                    texture_noise(&prep, &tile, prep.texel([x, y, 0.0]), 0.0)[0]
-                })
-                .collect();
-            let p = band_powers(&img, size, size, nb, true);
-            for j in 0..nb {
-                l[j][i] += p[j] / seeds.len() as f64;
-            }
-        }
-    }
-    l
 }
 
 #[cfg(test)]

@@ -115,40 +115,50 @@ fn trial(seed: u32, estimator: Estimator) -> (Vec<f64>, Vec<f32>) {
 fn random_weights_are_recovered() {
     let nb = num_bands(SIZE as usize, SIZE as usize);
     let mut worst_tol = vec![0.0f64; nb];
-    let mut worst = vec![0.0f64; nb];
-    let mut worst_lagae = vec![0.0f64; nb];
-    let mut mean_ours = vec![0.0f64; nb];
-    let mut mean_lagae = vec![0.0f64; nb];
+    let mut worst = [vec![0.0f64; nb], vec![0.0f64; nb]];
+    let mut mean = [vec![0.0f64; nb], vec![0.0f64; nb], vec![0.0f64; nb]];
     let seeds = 1..=6u32;
     let count = seeds.clone().count() as f64;
     for seed in seeds {
-        let (err, w) = trial(seed, Estimator::Deconvolved);
+        // The ring fit and the octave solve it starts from; eq. 9 for comparison.
+        let (err_r, w) = trial(seed, Estimator::Rings);
+        let (err, _) = trial(seed, Estimator::Deconvolved);
         let (err_l, _) = trial(seed, Estimator::Lagae);
         let tol = tolerances(&w);
         for j in 0..nb {
-            assert!(
-                err[j] <= tol[j],
-                "seed {seed} band {j}: relative error {:.4} > tolerance {:.4} (weights {w:?})",
-                err[j],
-                tol[j]
-            );
-            worst[j] = worst[j].max(err[j]);
+            for (name, e) in [("rings", &err_r), ("deconvolved", &err)] {
+                assert!(
+                    e[j] <= tol[j],
+                    "{name}, seed {seed} band {j}: relative error {:.4} > tolerance {:.4} \
+                     (weights {w:?})",
+                    e[j],
+                    tol[j]
+                );
+            }
+            worst[0][j] = worst[0][j].max(err_r[j]);
+            worst[1][j] = worst[1][j].max(err[j]);
             worst_tol[j] = worst_tol[j].max(tol[j]);
-            worst_lagae[j] = worst_lagae[j].max(err_l[j]);
-            mean_ours[j] += err[j] / count;
-            mean_lagae[j] += err_l[j] / count;
+            for (m, e) in mean.iter_mut().zip([&err_r, &err, &err_l]) {
+                m[j] += e[j] / count;
+            }
         }
     }
-    println!("band  widest tolerance  worst(deconvolved)  mean(deconvolved)  mean(lagae eq.9)");
+    println!(
+        "band  widest tolerance  worst(rings)  worst(deconvolved)  mean(rings)  \
+         mean(deconvolved)  mean(lagae eq.9)"
+    );
     for j in 0..nb {
         println!(
-            "{j:>4} {:>17.4} {:>19.4} {:>18.4} {:>17.4}",
-            worst_tol[j], worst[j], mean_ours[j], mean_lagae[j]
+            "{j:>4} {:>17.4} {:>13.4} {:>19.4} {:>12.4} {:>18.4} {:>17.4}",
+            worst_tol[j], worst[0][j], worst[1][j], mean[0][j], mean[1][j], mean[2][j]
         );
     }
     // The deconvolution is the point of departing from eq. 9: it must be better overall.
     let sum = |v: &[f64]| v.iter().sum::<f64>();
-    assert!(sum(&mean_ours) < sum(&mean_lagae));
+    assert!(sum(&mean[1]) < sum(&mean[2]));
+    // The ring fit is the default because it fits the spectrum better than the octave solve
+    // on photos (docs/measurements.md); on the model's own noise it must not lose to it.
+    assert!(sum(&mean[0]) < sum(&mean[1]));
 }
 
 #[test]

@@ -515,18 +515,22 @@ mod tests {
     fn model_statistics_follow_the_photo() {
         let (rgba, w, h) = sample();
         let r = analyze_rgba(&rgba, w, h, None, 1).unwrap();
-        // Spectra within 3 dB per ring over the rings the model covers.
-        for (k, (a, b)) in r
+        // Spectra within 2 dB RMS over the rings the model covers, and within 4.5 dB in each:
+        // the model's bands lie an octave apart, and a fit of a smooth photo spectrum leaves a
+        // ripple with that period (measured on this sample: 1.6 dB RMS, at most 3.7 dB; the
+        // octave solve's fit left 1.0 dB RMS here but fits the development set's photos worse,
+        // docs/measurements.md).
+        let db: Vec<f64> = r
             .photo
             .spectrum
             .iter()
             .zip(&r.model.spectrum)
-            .enumerate()
             .take(16)
-        {
-            let db = 10.0 * (a / b).log10();
-            assert!(db.abs() < 3.0, "ring {k}: photo {a:e}, model {b:e}");
-        }
+            .map(|(a, b)| 10.0 * (a / b).log10())
+            .collect();
+        let rms = (db.iter().map(|d| d * d).sum::<f64>() / db.len() as f64).sqrt();
+        assert!(rms < 2.0, "{rms} dB RMS: {db:?}");
+        assert!(db.iter().all(|d| d.abs() < 4.5), "{db:?}");
         let preview = preview_rgba(&r.params, 32, 16);
         assert_eq!(preview.len(), 32 * 16 * 4);
     }

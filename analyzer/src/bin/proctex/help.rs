@@ -42,7 +42,9 @@ OPTIONS:
     --no-histogram          no histogram matching (Lagae §5); knots are still stored
     --knots K               inverse-CDF intervals (default 10, at most 32)
     --seed S                seed of the noise (default 1)
-    --estimator E           deconvolved (default) or lagae (the paper's eq. 9)
+    --estimator E           rings (default: the radial spectrum fitted on quarter-octave
+                            rings), deconvolved (octave powers through the measured
+                            leakage) or lagae (the paper's eq. 9)
     --no-periodic           skip the periodic+smooth decomposition before the FFT
     --isotropic             every noise band isotropic (no fitted orientation), as Lagae
     --no-tone               no output tone curve on the noise model (its channels

@@ -68,9 +68,10 @@ fn analysis_flag(flag: &str, a: &mut Args, o: &mut Options) -> Result<bool> {
             o.estimator = match a.value(flag)?.as_str() {
                 "lagae" => Estimator::Lagae,
                 "deconvolved" => Estimator::Deconvolved,
+                "rings" => Estimator::Rings,
                 other => {
                     return Err(usage(format!(
-                        "--estimator: `{other}` is not `lagae` or `deconvolved`"
+                        "--estimator: `{other}` is not `rings`, `deconvolved` or `lagae`"
                     )));
                 }
             }
