@@ -41,9 +41,11 @@
 //!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands | --orient | --colour]
 //! ```
 
+#[path = "lab_common/ladder.rs"]
+mod ladder;
+use ladder::{decorrelated, mean_se, print_ladder, rank_match, run_ladder, stochastic_photos};
 use proctex::analyze::{Options, analyze_photo};
-use proctex::devset::{Category, overall, parse_manifest};
-use proctex::evaluate::{Fidelity, fidelity_with, random_phase};
+use proctex::evaluate::random_phase;
 use proctex::input::Photo;
 use proctex::render::{Prepared, colour, texture_noise, tile_for};
 use proctex::rng;
@@ -165,34 +167,12 @@ fn model_of(src: &Photo, seed: u32) -> Model {
     };
     let params = analyze_photo(src, &opts).expect("analysis").params;
     let prep = Prepared::new(&params);
-    let channels = std::array::from_fn(|c| {
-        src.pixels
-            .iter()
-            .map(|p| {
-                (0..3)
-                    .map(|k| prep.basis[c][k] * (p[k] - prep.mean[k]))
-                    .sum::<f32>()
-            })
-            .collect()
-    });
+    let channels = decorrelated(src, &prep);
     Model {
         prep,
         params,
         channels,
     }
-}
-
-/// Channel `values` (any distribution) rank-matched to `target`'s exact values.
-fn rank_match(values: &[f32], target: &[f32]) -> Vec<f32> {
-    let mut order: Vec<usize> = (0..values.len()).collect();
-    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
-    let mut sorted = target.to_vec();
-    sorted.sort_unstable_by(f32::total_cmp);
-    let mut out = vec![0.0; values.len()];
-    for (rank, &i) in order.iter().enumerate() {
-        out[i] = sorted[rank];
-    }
-    out
 }
 
 /// A Gaussian field with `chan`'s power averaged over octave rings (one box band per octave),
@@ -429,19 +409,7 @@ fn synthesise_bands(rung: usize, src: &Photo, seed: u32) -> Photo {
 
 /// Decorrelated channel values back to RGB about the model's mean.
 fn to_rgb(m: &Model, v: &[Vec<f32>; 3], w: u32, h: u32) -> Photo {
-    let p = &m.prep;
-    Photo {
-        width: w,
-        height: h,
-        pixels: (0..v[0].len())
-            .map(|i| {
-                std::array::from_fn(|k| {
-                    let rgb = p.mean[k] + (0..3).map(|c| v[c][i] * p.basis[c][k]).sum::<f32>();
-                    rgb.clamp(0.0, 1.0)
-                })
-            })
-            .collect(),
-    }
+    ladder::to_rgb(&m.prep, v, w, h)
 }
 
 /// The model's Gaussian noise per channel over the patch's pixels (one world unit a pixel, as
@@ -583,13 +551,6 @@ fn rgb_through_model(m: &Model, g: &[Vec<f32>; 3], w: u32, h: u32) -> Photo {
     }
 }
 
-fn mean_se(v: &[f64]) -> (f64, f64) {
-    let n = v.len() as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
-    (mean, (var / n).sqrt())
-}
-
 fn main() {
     let all: Vec<String> = std::env::args().skip(1).collect();
     let bands = all.iter().any(|a| a == "--bands");
@@ -607,52 +568,27 @@ fn main() {
     } else {
         &RUNGS
     };
-    let dir = std::path::Path::new(manifest).parent().unwrap();
-    let entries = parse_manifest(&std::fs::read_to_string(manifest).unwrap()).unwrap();
-    let photos: Vec<_> = entries
-        .iter()
-        .filter(|e| e.category == Category::Stochastic)
-        .collect();
-    // Per rung: per photo (spectrum, colour, structure, overall); and the differences from the
-    // previous rung per photo.
-    let mut table: Vec<Vec<[f64; 4]>> = vec![Vec::new(); names.len()];
-    for e in &photos {
-        let photo = Photo::decode(&std::fs::read(dir.join(&e.file)).unwrap()).unwrap();
-        let mut line = format!("{:<36}", e.file);
-        for (rung, rows) in table.iter_mut().enumerate() {
-            let f: Fidelity = fidelity_with(&photo, &seeds, &mut |src, seed| {
-                Ok(if colour_ladder {
-                    synthesise_colour(rung, src, seed)
-                } else if orient {
-                    synthesise_orient(rung, src, seed)
-                } else if bands {
-                    synthesise_bands(rung, src, seed)
-                } else {
-                    synthesise(rung, src, seed)
-                })
-            })
-            .unwrap();
-            let r = [
-                f.spectrum_ratio,
-                f.colour_ratio,
-                f.structure_ratio,
-                overall(&f),
-            ];
-            line += &format!(" {:.2}", r[3]);
-            rows.push(r);
+    let photos = stochastic_photos(manifest);
+    let table = run_ladder(&photos, &seeds, names.len(), &|rung, src, seed| {
+        if colour_ladder {
+            synthesise_colour(rung, src, seed)
+        } else if orient {
+            synthesise_orient(rung, src, seed)
+        } else if bands {
+            synthesise_bands(rung, src, seed)
+        } else {
+            synthesise(rung, src, seed)
         }
-        eprintln!("{line}");
-    }
+    });
     // Why the knots cost more on the model's noise than on ideal fields: the deviation of the
     // model's rendered noise against the one its knots assume (sigma), and its kurtosis (3 for a
     // Gaussian), per channel with variation.
     let mut sd_ratio: [Vec<f64>; 3] = Default::default();
     let mut kurtosis: [Vec<f64>; 3] = Default::default();
     let mut wide_ratio: [Vec<f64>; 3] = Default::default();
-    for e in &photos {
-        let photo = Photo::decode(&std::fs::read(dir.join(&e.file)).unwrap()).unwrap();
+    for (_, photo) in &photos {
         let diag_seed = std::env::var("PROCTEX_LAB_SEED").map_or(1, |s| s.parse().unwrap());
-        let m = model_of(&photo, diag_seed);
+        let m = model_of(photo, diag_seed);
         let g = model_noise(&m, photo.width, photo.height);
         for c in 0..3 {
             if m.prep.sigma[c] <= 1e-6 {
@@ -689,32 +625,5 @@ fn main() {
         "{} stochastic photos of {manifest}, seeds {seeds:?}: fidelity ratios, mean ± standard error over photos",
         photos.len()
     );
-    println!("| rung | spectrum | colour | structure | overall | overall − previous rung |");
-    println!("| --- | --- | --- | --- | --- | --- |");
-    for (rung, rows) in table.iter().enumerate() {
-        let col = |k: usize| mean_se(&rows.iter().map(|r| r[k]).collect::<Vec<_>>());
-        let cell = |k: usize| {
-            let (m, s) = col(k);
-            format!("{m:.2} ± {s:.2}")
-        };
-        let step = if rung == 0 {
-            "—".to_string()
-        } else {
-            let d: Vec<f64> = rows
-                .iter()
-                .zip(&table[rung - 1])
-                .map(|(a, b)| a[3] - b[3])
-                .collect();
-            let (m, s) = mean_se(&d);
-            format!("{m:+.3} ± {s:.3}")
-        };
-        println!(
-            "| {} | {} | {} | {} | {} | {step} |",
-            names[rung],
-            cell(0),
-            cell(1),
-            cell(2),
-            cell(3)
-        );
-    }
+    print_ladder(names, &table);
 }

@@ -30,8 +30,9 @@ pub const DENSITY_BANDS: usize = 4;
 /// `2^−10` cycles per pixel (the measurement's 1024² grid).
 pub const DENSITY_BINS: usize = 76;
 
-/// Band `j`'s radial power density at fine bin `t` (variance per unit area of frequency).
-fn density(table: &[[f64; DENSITY_BINS]], j: usize, t: usize) -> f64 {
+/// Band `j`'s radial power density at fine bin `t` (variance per unit area of frequency) in
+/// `table` (bands past its last row: the last stretched).
+pub fn density(table: &[[f64; DENSITY_BINS]], j: usize, t: usize) -> f64 {
     let last = table.len() - 1;
     if j <= last {
         return table[j][t.min(DENSITY_BINS - 1)];
@@ -57,6 +58,19 @@ pub fn fit_weights_with(
     nb: usize,
     start: &[f64],
 ) -> Vec<f32> {
+    fit_weights_by(&|j, t| density(table, j, t), rings, w, h, nb, start)
+}
+
+/// [`fit_weights`] for any `nb` bands whose density at fine bin `t` is `density(j, t)`
+/// (experiments with other band sets).
+pub fn fit_weights_by(
+    density: &dyn Fn(usize, usize) -> f64,
+    rings: &RingPowers,
+    w: usize,
+    h: usize,
+    nb: usize,
+    start: &[f64],
+) -> Vec<f32> {
     let pixels = (w * h) as f64;
     let n_rings = rings.power.len().div_ceil(FINE_PER_RING);
     // Per ring: the photo's power, its bin count, and each band's expected power.
@@ -68,7 +82,7 @@ pub fn fit_weights_with(
         p[r] += pw;
         n[r] += c;
         for (j, bj) in b[r].iter_mut().enumerate() {
-            *bj += c * density(table, j, t) / pixels;
+            *bj += c * density(j, t) / pixels;
         }
     }
     let total: f64 = p.iter().sum();
