@@ -46,19 +46,7 @@ pub fn density(table: &[[f64; DENSITY_BINS]], j: usize, t: usize) -> f64 {
 /// Weights of `nb` bands fitted to `rings` of a `w × h` image, starting from `start` (band
 /// variances `w²`, e.g. the deconvolved octave solve's). Returns the weights (`√v`).
 pub fn fit_weights(rings: &RingPowers, w: usize, h: usize, nb: usize, start: &[f64]) -> Vec<f32> {
-    fit_weights_with(&RING_DENSITY, rings, w, h, nb, start)
-}
-
-/// [`fit_weights`] with another density table (tests).
-pub fn fit_weights_with(
-    table: &[[f64; DENSITY_BINS]],
-    rings: &RingPowers,
-    w: usize,
-    h: usize,
-    nb: usize,
-    start: &[f64],
-) -> Vec<f32> {
-    fit_weights_by(&|j, t| density(table, j, t), rings, w, h, nb, start)
+    fit_weights_by(&|j, t| density(&RING_DENSITY, j, t), rings, w, h, nb, start)
 }
 
 /// [`fit_weights`] for any `nb` bands whose density at fine bin `t` is `density(j, t)`
