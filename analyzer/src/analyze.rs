@@ -286,7 +286,7 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
     let [s0, s1] = band_spectra_packed(pair, w, h, nb, opts.periodic, extras);
     let [s2, _] = band_spectra_packed(single, w, h, nb, opts.periodic, extras);
     let spectra = [s0, s1, s2];
-    let band_powers = spectra.clone().map(|s| s.powers);
+    let band_powers = spectra.each_ref().map(|s| s.powers.clone());
     let weights = [0, 1, 2].map(|c| {
         let octaves = estimate_weights(&band_powers[c], opts.estimator);
         if !extras.rings {
