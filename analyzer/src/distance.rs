@@ -99,7 +99,7 @@ pub fn structure_distance_with(db: &Db, a: &Photo, b: &Photo) -> f64 {
 }
 
 /// The descriptor [`structure_distance`] compares: of the luminance's centre square.
-fn describe_luminance(p: &Photo) -> crate::gabor::Descriptor {
+pub fn describe_luminance(p: &Photo) -> crate::gabor::Descriptor {
     let lum: Vec<f32> = p
         .pixels
         .iter()

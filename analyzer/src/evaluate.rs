@@ -190,7 +190,7 @@ pub fn render_params_at_photo_size(params: &crate::params::Params, photo: &Photo
 }
 
 /// The photo's quadrants, each half its size: top-left, top-right, bottom-left, bottom-right.
-fn quadrants(photo: &Photo) -> Result<[Photo; 4]> {
+pub fn quadrants(photo: &Photo) -> Result<[Photo; 4]> {
     let (hw, hh) = (photo.width / 2, photo.height / 2);
     let quad = |x: u32, y: u32| photo.crop(Crop { x, y, w: hw, h: hh });
     let (right, bottom) = (photo.width - hw, photo.height - hh);
