@@ -1,80 +1,130 @@
-// Baking the 2D wavelet-noise tile (plane textures) from the seed; uses bake.wgsl. Three passes:
-//   pass 1, N/2 x N:  fs_bake_down_x   R↓ along x
-//   pass 2, N x N/2:  fs_bake_down_y   (R↓↑ along x)↓ along y       reads pass 1 at binding 0
-//   pass 3, N x N:    fs_bake_tile     R − R↓↑, odd shift, normalise reads pass 2 at binding 0
-// Twins: analyzer/src/noise.rs (downsample, upsample: one output sample each here; the entry
-// points' twin is Tile::generate, r_value its `r` vector, band its `band`). Every value is a
-// vec3: the tile's three independent components (component k draws the Gaussian values
-// k·N² …), baked side by side into the RGB of an rgba32float target.
+// Baking the 2D noise tile (plane textures) from the seed; uses bake.wgsl. The tile is complex
+// white noise times a fixed magnitude M, inverse-transformed (analyzer/src/noise/spectral.rs has
+// why). Three passes, N x N each:
+//   pass 1: fs_bake_spectrum  Z·M of both draws at frequency bin (kx, ky) = texel (x, y)
+//   pass 2: fs_bake_rows      inverse DFT along x                        reads pass 1 at binding 0
+//   pass 3: fs_bake_tile      inverse DFT along y, components, normalise reads pass 2 at binding 0
+// Twins: analyzer/src/noise/spectral.rs (magnitude: tile_magnitude here, expected_power_at:
+// expected_power, field_pair: the three passes; the CPU's FFT and these direct DFTs agree to
+// rounding). `TILE_PROFILE` (the ring profile of the rendered power, N/2 + 1 values) is a
+// generated constant. Every value is a vec4 of two complex numbers (draws 0 and 1) until pass 3
+// writes the three components into the RGB of an rgba32float target: component 0 and 1 are the
+// real and imaginary parts of draw 0, component 2 the real part of draw 1.
 
-// The Gaussian coefficients R of the three components at tile texel (x, y), wrapped.
-fn r_value(x: i32, y: i32) -> vec3<f32> {
+const TAU: f32 = 6.283185307179586;
+
+// e^{sign·2πi·k/N} for an integer phase k (reduced exactly before the float conversion).
+fn twiddle(k: i32, sign: f32) -> vec2<f32> {
+    let a = sign * TAU * f32(wrap_mod(k, i32(N))) / f32(N);
+    return vec2<f32>(cos(a), sin(a));
+}
+
+fn cmul(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
+}
+
+// Â(k/N) = Σ_j a_j e^{−2πi·jk/N} and P̂(k/N) = Σ_m p_m e^{−2πi·mk/N} (k may exceed N).
+fn transfer_a(k: i32) -> vec2<f32> {
+    var s = vec2<f32>(0.0);
+    for (var j = -16; j < 16; j++) {
+        s += a_coeff(j) * twiddle(j * k, -1.0);
+    }
+    return s;
+}
+
+fn transfer_p(k: i32) -> vec2<f32> {
+    var s = vec2<f32>(0.0);
+    for (var m = -2; m < 2; m++) {
+        s += P[m + 2] * twiddle(m * k, -1.0);
+    }
+    return s;
+}
+
+// The wavelet band's expected power at bin (kx, ky) in closed form (expected_power_at).
+fn expected_power(kx: i32, ky: i32) -> f32 {
+    let h = i32(N) / 2;
+    let pp = cmul(transfer_p(kx), transfer_p(ky));
+    let ax = transfer_a(kx);
+    let ay = transfer_a(ky);
+    let conj_a = cmul(vec2<f32>(ax.x, -ax.y), vec2<f32>(ay.x, -ay.y));
+    let own = vec2<f32>(1.0, 0.0) - 0.25 * cmul(pp, conj_a);
+    let axh = transfer_a(kx + h);
+    let ayh = transfer_a(ky + h);
+    let aliases = dot(axh, axh) * dot(ay, ay) + dot(ax, ax) * dot(ayh, ayh)
+        + dot(axh, axh) * dot(ayh, ayh);
+    return f32(N * N) * (dot(own, own) + dot(pp, pp) / 16.0 * aliases);
+}
+
+fn signed_bin(k: i32) -> i32 {
     let n = i32(N);
-    let xi = u32(((x % n) + n) % n);
-    let yi = u32(((y % n) + n) % n);
-    let i = xi + N * yi;
-    return vec3<f32>(
-        gaussian(TILE_SEED, TILE_STREAM, i),
-        gaussian(TILE_SEED, TILE_STREAM, i + N * N),
-        gaussian(TILE_SEED, TILE_STREAM, i + 2u * N * N),
+    if (k > n / 2) {
+        return k - n;
+    }
+    return k;
+}
+
+fn sinc(u: f32) -> f32 {
+    if (u == 0.0) {
+        return 1.0;
+    }
+    let x = 3.141592653589793 * u;
+    return sin(x) / x;
+}
+
+// M at bin (kx, ky): inside the disk of N/2 bins the ring profile over the B-spline's transfer,
+// outside it the wavelet band's own expected power; both over N² (spectral::magnitude).
+fn tile_magnitude(kx: i32, ky: i32) -> f32 {
+    let sx = signed_bin(kx);
+    let sy = signed_bin(ky);
+    let ring = i32(round(sqrt(f32(sx * sx + sy * sy))));
+    var power: f32;
+    if (ring <= i32(N) / 2) {
+        let spline = pow(sinc(f32(sx) / f32(N)) * sinc(f32(sy) / f32(N)), 6.0);
+        power = TILE_PROFILE[ring] / spline;
+    } else {
+        power = expected_power(kx, ky);
+    }
+    return sqrt(power) / f32(N * N);
+}
+
+@fragment
+fn fs_bake_spectrum(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let kx = i32(frag.x);
+    let ky = i32(frag.y);
+    let b = u32(kx) + N * u32(ky);
+    let m = tile_magnitude(kx, ky);
+    let draw = 2u * N * N;
+    return m * vec4<f32>(
+        gaussian(TILE_SEED, TILE_STREAM, 2u * b),
+        gaussian(TILE_SEED, TILE_STREAM, 2u * b + 1u),
+        gaussian(TILE_SEED, TILE_STREAM, draw + 2u * b),
+        gaussian(TILE_SEED, TILE_STREAM, draw + 2u * b + 1u),
     );
 }
 
-// r↓[i] = Σ_j a_j r[(2i + j) mod n] along x, for row y.
-fn downsample(i: i32, y: i32) -> vec3<f32> {
-    var s = vec3<f32>(0.0);
-    for (var j = -16; j < 16; j++) {
-        s += a_coeff(j) * r_value(2 * i + j, y);
-    }
-    return s;
-}
-
-// r↑[x] = Σ_{k=⌊x/2⌋}^{⌊x/2⌋+1} p_{x−2k} r↓[k mod n/2] of row `row` of the bound texture,
-// whose axis 0 (`along_x`) or axis 1 holds the n/2 coarse samples.
-fn upsample(x: i32, row: i32, along_x: bool) -> vec3<f32> {
-    let half = i32(N) / 2;
-    var s = vec3<f32>(0.0);
-    for (var k = x / 2; k <= x / 2 + 1; k++) {
-        var v: vec3<f32>;
-        if (along_x) {
-            v = textureLoad(bake_src, vec2<i32>(wrap_mod(k, half), row), 0).xyz;
-        } else {
-            v = textureLoad(bake_src, vec2<i32>(row, wrap_mod(k, half)), 0).xyz;
-        }
-        s += P[x - 2 * k + 2] * v;
-    }
-    return s;
-}
-
 @fragment
-fn fs_bake_down_x(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    return vec4<f32>(downsample(i32(frag.x), i32(frag.y)), 0.0);
-}
-
-@fragment
-fn fs_bake_down_y(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+fn fs_bake_rows(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let x = i32(frag.x);
-    let i = i32(frag.y);
-    let n = i32(N);
-    var s = vec3<f32>(0.0);
-    for (var j = -16; j < 16; j++) {
-        s += a_coeff(j) * upsample(x, wrap_mod(2 * i + j, n), true);
+    let ky = i32(frag.y);
+    var s = vec4<f32>(0.0);
+    for (var kx = 0; kx < i32(N); kx++) {
+        let v = textureLoad(bake_src, vec2<i32>(kx, ky), 0);
+        let e = twiddle(kx * x, 1.0);
+        s += vec4<f32>(cmul(v.xy, e), cmul(v.zw, e));
     }
-    return vec4<f32>(s, 0.0);
-}
-
-fn band(x: i32, y: i32) -> vec3<f32> {
-    let n = i32(N);
-    let xw = wrap_mod(x, n);
-    let yw = wrap_mod(y, n);
-    return r_value(xw, yw) - upsample(yw, xw, false);
+    return s;
 }
 
 @fragment
 fn fs_bake_tile(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let x = i32(frag.x);
     let y = i32(frag.y);
-    let o = i32(TILE_ODD_OFFSET);
-    let v = (band(x, y) + band(x + o, y + o) - TILE_MEAN) * TILE_INV_SD;
+    var s = vec4<f32>(0.0);
+    for (var ky = 0; ky < i32(N); ky++) {
+        let v = textureLoad(bake_src, vec2<i32>(x, ky), 0);
+        let e = twiddle(ky * y, 1.0);
+        s += vec4<f32>(cmul(v.xy, e), cmul(v.zw, e));
+    }
+    let v = (s.xyz - TILE_MEAN) * TILE_INV_SD;
     return vec4<f32>(v, 0.0);
 }

@@ -222,7 +222,10 @@ pub fn shader(keys: &[Params], format: &str) -> Result<String> {
 fn wgsl_of(subject: &Subject) -> String {
     let tp = subject.tile_params();
     let (n, seed, stream, mean, inv_sd) = bake_inputs(tp);
-    let bake = proctex_shaders::bake_constants(n, seed, stream, mean, inv_sd);
+    let mut bake = proctex_shaders::bake_constants(n, seed, stream, mean, inv_sd);
+    if !tp.solid {
+        bake += &proctex_shaders::bake2_constants(crate::noise::spectral::tile2_profile());
+    }
     let (header, morph) = match subject {
         Subject::Texture(p) => (
             proctex_shaders::params_private(Some(&params_value(&Prepared::new(p), Lang::Wgsl))),
@@ -264,7 +267,10 @@ fn glsl_of(subject: &Subject) -> String {
     use proctex_shaders::glsl as gl;
     let tp = subject.tile_params();
     let (n, seed, stream, mean, inv_sd) = bake_inputs(tp);
-    let bake = gl::bake_constants(n, seed, stream, mean, inv_sd);
+    let mut bake = gl::bake_constants(n, seed, stream, mean, inv_sd);
+    if !tp.solid {
+        bake += &gl::bake2_constants(crate::noise::spectral::tile2_profile());
+    }
     let value = match subject {
         Subject::Texture(p) => format!(
             "const Params params = {};",

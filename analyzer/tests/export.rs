@@ -75,7 +75,7 @@ fn exported_wgsl_validates_with_naga() {
                 "fs_bake3_tile",
             ]
         } else {
-            &["fs_bake_down_x", "fs_bake_down_y", "fs_bake_tile"]
+            &["fs_bake_spectrum", "fs_bake_rows", "fs_bake_tile"]
         };
         for want in ["vs_main", "fs_main", "vs_bake"].iter().chain(passes) {
             assert!(entries.contains(want), "{name}: no {want}");

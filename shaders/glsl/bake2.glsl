@@ -1,72 +1,112 @@
-// Baking the 2D wavelet-noise tile (GLSL twin of shaders/bake2.wgsl); uses bake.glsl.
-//   pass 1, N/2 x N:  R down-sampled along x
-//   pass 2, N x N/2:  (pass 1 up-sampled along x) down-sampled along y, reads proctex_bake_src
-//   pass 3, N x N:    R - pass 2 up-sampled along y, odd shift, normalised; reads proctex_bake_src
+// Baking the 2D noise tile (GLSL twin of shaders/bake2.wgsl); uses bake.glsl. Complex white
+// noise times a fixed magnitude M, inverse-transformed; three passes, N x N each:
+//   pass 1: Z*M of both draws at frequency bin (kx, ky) = texel (x, y)
+//   pass 2: inverse DFT along x, reads proctex_bake_src
+//   pass 3: inverse DFT along y, components, normalised; reads proctex_bake_src
+// TILE_PROFILE (N/2 + 1 values) is a generated constant.
 
-// The Gaussian coefficients R of the tile's three components at texel (x, y), wrapped
-// (component k draws the values k*N*N ...; baked into RGB).
-vec3 r_value(int x, int y) {
-    int n = int(N);
-    uint xi = uint(wrap_mod(x, n));
-    uint yi = uint(wrap_mod(y, n));
-    uint i = xi + N * yi;
-    return vec3(
-        gaussian(TILE_SEED, TILE_STREAM, i),
-        gaussian(TILE_SEED, TILE_STREAM, i + N * N),
-        gaussian(TILE_SEED, TILE_STREAM, i + 2u * N * N));
+const float TAU = 6.283185307179586;
+
+// e^{sign*2*pi*i*k/N} for an integer phase k (reduced exactly before the float conversion).
+vec2 twiddle(int k, float sgn) {
+    float a = sgn * TAU * float(wrap_mod(k, int(N))) / float(N);
+    return vec2(cos(a), sin(a));
+}
+
+vec2 cmul(vec2 a, vec2 b) {
+    return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
 }
 
 #if PROCTEX_PASS == 1
-// r_down[i] = sum_j a_j r[(2i + j) mod n] along x, for row y.
-vec3 downsample(int i, int y) {
-    vec3 s = vec3(0.0);
+vec2 transfer_a(int k) {
+    vec2 s = vec2(0.0);
     for (int j = -16; j < 16; j++) {
-        s += a_coeff(j) * r_value(2 * i + j, y);
-    }
-    return s;
-}
-#else
-// r_up[x] = sum_{k=x/2}^{x/2+1} p_{x-2k} r_down[k mod n/2] of row `row` of proctex_bake_src,
-// whose axis 0 (along_x) or axis 1 holds the n/2 coarse samples.
-vec3 upsample(int x, int row, bool along_x) {
-    int halfn = int(N) / 2;
-    vec3 s = vec3(0.0);
-    for (int k = x / 2; k <= x / 2 + 1; k++) {
-        vec3 v;
-        if (along_x) {
-            v = texelFetch(proctex_bake_src, ivec2(wrap_mod(k, halfn), row), 0).xyz;
-        } else {
-            v = texelFetch(proctex_bake_src, ivec2(row, wrap_mod(k, halfn)), 0).xyz;
-        }
-        s += P[x - 2 * k + 2] * v;
+        s += a_coeff(j) * twiddle(j * k, -1.0);
     }
     return s;
 }
 
-vec3 band(int x, int y) {
+vec2 transfer_p(int k) {
+    vec2 s = vec2(0.0);
+    for (int m = -2; m < 2; m++) {
+        s += P[m + 2] * twiddle(m * k, -1.0);
+    }
+    return s;
+}
+
+float expected_power(int kx, int ky) {
+    int h = int(N) / 2;
+    vec2 pp = cmul(transfer_p(kx), transfer_p(ky));
+    vec2 ax = transfer_a(kx);
+    vec2 ay = transfer_a(ky);
+    vec2 conj_a = cmul(vec2(ax.x, -ax.y), vec2(ay.x, -ay.y));
+    vec2 own = vec2(1.0, 0.0) - 0.25 * cmul(pp, conj_a);
+    vec2 axh = transfer_a(kx + h);
+    vec2 ayh = transfer_a(ky + h);
+    float aliases = dot(axh, axh) * dot(ay, ay) + dot(ax, ax) * dot(ayh, ayh)
+        + dot(axh, axh) * dot(ayh, ayh);
+    return float(N * N) * (dot(own, own) + dot(pp, pp) / 16.0 * aliases);
+}
+
+int signed_bin(int k) {
     int n = int(N);
-    int xw = wrap_mod(x, n);
-    int yw = wrap_mod(y, n);
-    return r_value(xw, yw) - upsample(yw, xw, false);
+    if (k > n / 2) {
+        return k - n;
+    }
+    return k;
+}
+
+float sinc(float u) {
+    if (u == 0.0) {
+        return 1.0;
+    }
+    float x = 3.141592653589793 * u;
+    return sin(x) / x;
+}
+
+float tile_magnitude(int kx, int ky) {
+    int sx = signed_bin(kx);
+    int sy = signed_bin(ky);
+    int ring = int(round(sqrt(float(sx * sx + sy * sy))));
+    float power;
+    if (ring <= int(N) / 2) {
+        float spline = pow(sinc(float(sx) / float(N)) * sinc(float(sy) / float(N)), 6.0);
+        power = TILE_PROFILE[ring] / spline;
+    } else {
+        power = expected_power(kx, ky);
+    }
+    return sqrt(power) / float(N * N);
 }
 #endif
 
-// One entry per pass (twins of fs_bake_down_x, fs_bake_down_y, fs_bake_tile).
+// One entry per pass (twins of fs_bake_spectrum, fs_bake_rows, fs_bake_tile).
 void main() {
     int x = int(gl_FragCoord.x);
     int y = int(gl_FragCoord.y);
 #if PROCTEX_PASS == 1
-    proctex_bake_out = vec4(downsample(x, y), 0.0);
+    uint b = uint(x) + N * uint(y);
+    float m = tile_magnitude(x, y);
+    uint draw = 2u * N * N;
+    proctex_bake_out = m * vec4(
+        gaussian(TILE_SEED, TILE_STREAM, 2u * b),
+        gaussian(TILE_SEED, TILE_STREAM, 2u * b + 1u),
+        gaussian(TILE_SEED, TILE_STREAM, draw + 2u * b),
+        gaussian(TILE_SEED, TILE_STREAM, draw + 2u * b + 1u));
 #elif PROCTEX_PASS == 2
-    int n = int(N);
-    vec3 s = vec3(0.0);
-    for (int j = -16; j < 16; j++) {
-        s += a_coeff(j) * upsample(x, wrap_mod(2 * y + j, n), true);
+    vec4 s = vec4(0.0);
+    for (int kx = 0; kx < int(N); kx++) {
+        vec4 v = texelFetch(proctex_bake_src, ivec2(kx, y), 0);
+        vec2 e = twiddle(kx * x, 1.0);
+        s += vec4(cmul(v.xy, e), cmul(v.zw, e));
     }
-    proctex_bake_out = vec4(s, 0.0);
+    proctex_bake_out = s;
 #else
-    int o = int(TILE_ODD_OFFSET);
-    vec3 v = (band(x, y) + band(x + o, y + o) - TILE_MEAN) * TILE_INV_SD;
-    proctex_bake_out = vec4(v, 0.0);
+    vec4 s = vec4(0.0);
+    for (int ky = 0; ky < int(N); ky++) {
+        vec4 v = texelFetch(proctex_bake_src, ivec2(x, ky), 0);
+        vec2 e = twiddle(ky * y, 1.0);
+        s += vec4(cmul(v.xy, e), cmul(v.zw, e));
+    }
+    proctex_bake_out = vec4((s.xyz - TILE_MEAN) * TILE_INV_SD, 0.0);
 #endif
 }

@@ -18,7 +18,7 @@ BWeights bspline_weights(float p) {
 
 // The tile's expected coefficient autocorrelation at lags 0 and ±1, by how many axes the lag
 // moves along (twins of TILE2_LAGS / TILE3_LAGS in analyzer/src/noise.rs).
-const vec3 TILE2_LAGS = vec3(5.5791, -1.1537, -0.7334);
+const vec3 TILE2_LAGS = vec3(5.5698, -1.1486, -0.7269);
 const vec4 TILE3_LAGS = vec4(8.964, -0.7905, -0.4997, -0.3143);
 
 // The B-spline weights' autocorrelation at lags 0 and ±1.

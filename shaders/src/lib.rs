@@ -81,7 +81,7 @@ pub fn seamless_shader() -> String {
 /// Baking noise tiles from the seed on the GPU (exported snippets): what the 2D and 3D bakes
 /// share.
 pub const BAKE: &str = include_str!("../bake.wgsl");
-/// The 2D tile's bake passes (`fs_bake_down_x`, `fs_bake_down_y`, `fs_bake_tile`).
+/// The 2D tile's bake passes (`fs_bake_spectrum`, `fs_bake_rows`, `fs_bake_tile`).
 pub const BAKE2: &str = include_str!("../bake2.wgsl");
 /// The 3D tile's bake passes into slice atlases (`fs_bake3_down_x|y|z`, `fs_bake3_tile`).
 pub const BAKE3: &str = include_str!("../bake3.wgsl");
@@ -105,8 +105,20 @@ pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: [f64; 3], inv_sd: [f
     )
 }
 
-/// The 2D tile-baking shader for the given constants (entry points `vs_bake`,
-/// `fs_bake_down_x`, `fs_bake_down_y`, `fs_bake_tile`).
+/// The constant the 2D bake needs besides [`bake_constants`]: `TILE_PROFILE`, the ring profile
+/// of the tile's rendered power (`noise::spectral::ring_profile`, N/2 + 1 values).
+pub fn bake2_constants(profile: &[f64]) -> String {
+    let values: Vec<String> = profile.iter().map(|v| format!("{:?}", *v as f32)).collect();
+    format!(
+        "const TILE_PROFILE = array<f32, {}>({});\n",
+        profile.len(),
+        values.join(", ")
+    )
+}
+
+/// The 2D tile-baking shader for the given constants, [`bake_constants`] and
+/// [`bake2_constants`] (entry points `vs_bake`, `fs_bake_spectrum`, `fs_bake_rows`,
+/// `fs_bake_tile`).
 pub fn bake_shader(constants: &str) -> String {
     [constants, HASH, BAKE, BAKE2].join("\n")
 }
@@ -183,6 +195,17 @@ pub mod glsl {
         ("tile3_atlas.glsl", TILE3_ATLAS, super::TILE3_ATLAS),
     ];
 
+    /// [`super::bake2_constants`] in GLSL.
+    pub fn bake2_constants(profile: &[f64]) -> String {
+        let values: Vec<String> = profile.iter().map(|v| format!("{:?}", *v as f32)).collect();
+        format!(
+            "const float TILE_PROFILE[{}] = float[{}]({});\n",
+            profile.len(),
+            profile.len(),
+            values.join(", ")
+        )
+    }
+
     /// [`super::bake_constants`] in GLSL.
     pub fn bake_constants(
         n: u32,
@@ -251,7 +274,11 @@ pub fn shaders() -> Vec<(&'static str, String)> {
         ("seamless", seamless_shader()),
         (
             "bake",
-            bake_shader(&bake_constants(128, 1, 0x7431_3244, [0.01; 3], [1.9; 3])),
+            bake_shader(&format!(
+                "{}{}",
+                bake_constants(128, 1, 0x7431_3244, [0.01; 3], [1.9; 3]),
+                bake2_constants(&[1.0; 65])
+            )),
         ),
         (
             "bake3",

@@ -16,7 +16,10 @@ const TWIN_FILES: [(&str, &[&str]); 18] = [
     ("tile3.wgsl", &["analyzer/src/noise.rs"]),
     ("tile3_atlas.wgsl", &["analyzer/src/noise.rs"]),
     ("atlas3.wgsl", &["analyzer/src/noise.rs"]),
-    ("bake2.wgsl", &["analyzer/src/noise.rs"]),
+    (
+        "bake2.wgsl",
+        &["analyzer/src/noise.rs", "analyzer/src/noise/spectral.rs"],
+    ),
     ("bake3.wgsl", &["analyzer/src/noise.rs"]),
     (
         "noise.wgsl",
@@ -38,7 +41,7 @@ const TWIN_FILES: [(&str, &[&str]); 18] = [
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 26] = [
+const RENAMED: [(&str, &str); 32] = [
     // `uniform` would shadow the address space of `var<uniform>` (exported morphs have one).
     ("uniform01", "uniform"),
     ("morph_params", "morph_path"),
@@ -50,14 +53,22 @@ const RENAMED: [(&str, &str); 26] = [
     ("fs_seamless", "render_rows"),
     ("fs_solid", "render_solid"),
     ("fs_solid_volume", "render_solid_volume"),
-    // The bake passes together are Tile::generate; r_value is its `r` vector, band its `band`,
-    // wrap its `rem_euclid` indexing.
+    // The 2D bake's passes together are Tile::generate of the spectral tile: the spectrum and
+    // the two inverse DFTs are spectral::field_pair (its FFT), the magnitude and the closed
+    // form of the band's power spectral::magnitude and expected_power_at (with their helpers:
+    // the transfers, the signed bin, the B-spline's power); wrap is the `rem_euclid` indexing.
     ("vs_bake", "generate"),
-    ("fs_bake_down_x", "generate"),
-    ("fs_bake_down_y", "generate"),
+    ("fs_bake_spectrum", "field_pair"),
+    ("fs_bake_rows", "field_pair"),
     ("fs_bake_tile", "generate"),
-    ("r_value", "generate"),
-    ("band", "generate"),
+    ("twiddle", "field_pair"),
+    ("cmul", "field_pair"),
+    ("transfer_a", "expected_power_at"),
+    ("transfer_p", "expected_power_at"),
+    ("expected_power", "expected_power_at"),
+    ("tile_magnitude", "magnitude"),
+    ("signed_bin", "frequency"),
+    ("sinc", "spline_power"),
     ("wrap_mod", "shift_index"),
     // The same for the 3D tile's passes (bake3.wgsl).
     ("fs_bake3_down_x", "generate"),

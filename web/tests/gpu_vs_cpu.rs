@@ -418,22 +418,23 @@ fn tile_baked_on_the_gpu_equals_the_cpu_tile() {
     for seed in [1u32, 77] {
         let tile = proctex::noise::Tile::new_2d(seed);
         let n = tile.n as u32;
-        let consts = proctex_shaders::bake_constants(
-            n,
-            seed,
-            proctex::rng::stream::TILE_2D,
-            tile.stats.map(|s| s.raw_mean),
-            tile.stats.map(|s| 1.0 / s.raw_variance.sqrt()),
-        );
+        let consts =
+            proctex_shaders::bake_constants(
+                n,
+                seed,
+                proctex::rng::stream::TILE_2D,
+                tile.stats.map(|s| s.raw_mean),
+                tile.stats.map(|s| 1.0 / s.raw_variance.sqrt()),
+            ) + &proctex_shaders::bake2_constants(proctex::noise::spectral::tile2_profile());
         let module = gpu
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some("bake"),
                 source: wgpu::ShaderSource::Wgsl(proctex_shaders::bake_shader(&consts).into()),
             });
-        let down_x = bake_pass(&gpu, &module, "fs_bake_down_x", None, n / 2, n);
-        let down_y = bake_pass(&gpu, &module, "fs_bake_down_y", Some(&down_x), n, n / 2);
-        let baked = bake_pass(&gpu, &module, "fs_bake_tile", Some(&down_y), n, n);
+        let spectrum = bake_pass(&gpu, &module, "fs_bake_spectrum", None, n, n);
+        let rows = bake_pass(&gpu, &module, "fs_bake_rows", Some(&spectrum), n, n);
+        let baked = bake_pass(&gpu, &module, "fs_bake_tile", Some(&rows), n, n);
         let got = read_rgba32(&gpu, &baked, n, n);
         let max = got
             .iter()
@@ -609,8 +610,8 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, src: &str, cases: &[(String, Params, Opt
         bake3(gpu, &module, proctex::noise::TILE_3D as u32)
     } else {
         let n = proctex::noise::TILE_2D as u32;
-        let a = bake_pass(gpu, &module, "fs_bake_down_x", None, n / 2, n);
-        let b = bake_pass(gpu, &module, "fs_bake_down_y", Some(&a), n, n / 2);
+        let a = bake_pass(gpu, &module, "fs_bake_spectrum", None, n, n);
+        let b = bake_pass(gpu, &module, "fs_bake_rows", Some(&a), n, n);
         bake_pass(gpu, &module, "fs_bake_tile", Some(&b), n, n)
     };
     let (w, h) = (256u32, 192u32);

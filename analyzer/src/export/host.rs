@@ -14,8 +14,8 @@ pub(super) fn glsl_host_notes_plane(n: u32) -> String {
 // This one text is five programs' shaders: insert one line after `#version` to pick the stage.
 //   `#define PROCTEX_VERTEX`  the vertex shader of every program: a full-screen triangle,
 //                             drawArrays(TRIANGLES, 0, 3) with no attributes;
-//   `#define PROCTEX_PASS 1`  bake pass 1 into an RGBA32F target A of {h} x {n}, no textures;
-//   `#define PROCTEX_PASS 2`  bake pass 2 into an RGBA32F target B of {n} x {h}, A bound to the
+//   `#define PROCTEX_PASS 1`  bake pass 1 into an RGBA32F target A of {n} x {n}, no textures;
+//   `#define PROCTEX_PASS 2`  bake pass 2 into an RGBA32F target B of {n} x {n}, A bound to the
 //                             sampler `proctex_bake_src`;
 //   `#define PROCTEX_PASS 3`  bake pass 3 into an RGBA32F target T of {n} x {n}, B bound to
 //                             `proctex_bake_src`;
@@ -24,8 +24,7 @@ pub(super) fn glsl_host_notes_plane(n: u32) -> String {
 //                             `proctex_height` pixels high; or call `proctex(p, pixel_size)`
 //                             from your own shader (p in world units).
 // Bake once (rendering into RGBA32F needs EXT_color_buffer_float in WebGL2); textures are read
-// with texelFetch, so NEAREST filtering and no mipmaps.",
-        h = n / 2
+// with texelFetch, so NEAREST filtering and no mipmaps."
     )
 }
 
@@ -72,14 +71,13 @@ pub(super) fn wgsl_host_notes_plane(n: u32) -> String {
 // Proctex texture, exported by `proctex export --format wgsl` (params format proctex/1).
 // Host, once: make three rgba32float render targets and draw a full-screen triangle (3 vertices,
 // no buffers) into each with `vs_bake` and, in order,
-//   fs_bake_down_x into A ({h} × {n}), no bindings;
-//   fs_bake_down_y into B ({n} × {h}), A bound at @group(0) @binding(0);
-//   fs_bake_tile   into T ({n} × {n}), B bound at @group(0) @binding(0).
+//   fs_bake_spectrum into A ({n} × {n}), no bindings;
+//   fs_bake_rows     into B ({n} × {n}), A bound at @group(0) @binding(0);
+//   fs_bake_tile     into T ({n} × {n}), B bound at @group(0) @binding(0).
 // Then draw with `vs_main`/`fs_main` (one world unit = one photo pixel per screen pixel), T at
 // @group(0) @binding(1) and @binding(2); or call `proctex(p, pixel_size)` from your own
 // fragment shader (p in world units).
-// Textures are read with textureLoad (unfilterable float is enough).",
-        h = n / 2
+// Textures are read with textureLoad (unfilterable float is enough)."
     )
 }
 

@@ -1,6 +1,8 @@
 //! Shared helpers of the integration tests.
 #![allow(dead_code)]
 
+pub mod round_trip;
+
 use proctex::input::Photo;
 use proctex::params::{Colour, FORMAT, Histogram, Model, NoiseModel, Params, Transform};
 
