@@ -6,10 +6,14 @@
 //! `[1/4, 1/2]` cycles per coefficient.
 //!
 //! Departures from the original, all deliberate:
+//! - The 2D tile is drawn in the frequency domain ([`spectral`]): white noise times the
+//!   wavelet band's expected magnitude, made a function of radius inside the disk of ½ cycle
+//!   per coefficient, with no even/odd fix. Cook & DeRose's separable construction biased the
+//!   band towards the axes and its fix combed the spectrum. The 3D tile keeps the construction.
 //! - Random values come from the counter-based hash in [`crate::rng`] (seedable, order-free,
 //!   reproducible in a shader), not from a sequential generator.
-//! - The "odd offset" of the even/odd variance fix is made odd, as the construction intends
-//!   (the original code's `offset&1==0` test never fires, a C precedence slip).
+//! - The "odd offset" of the 3D tile's even/odd variance fix is made odd, as the construction
+//!   intends (the original code's `offset&1==0` test never fires, a C precedence slip).
 //! - Each tile is normalised to zero mean and *unit* variance of the evaluated B-spline field
 //!   over one period, computed exactly from the coefficients. So `σ²_N = 1` holds for our own
 //!   band by construction instead of the paper's approximate 0.265, and a band weight is the
@@ -93,8 +97,9 @@ impl Tile {
         &self.data[k * len..(k + 1) * len]
     }
 
-    /// Cook & DeRose's construction, then normalisation (see the module docs), for every
-    /// component: component `k` draws the Gaussian values `k·n^dims …` of `stream`.
+    /// The 2D tile from [`spectral`] (components 0 and 1 from one complex draw, 2 from the
+    /// next), the 3D one by Cook & DeRose's construction (component `k` draws the Gaussian
+    /// values `k·n³ …` of `stream`); then normalisation (see the module docs).
     pub fn generate(seed: u32, dims: usize, n: usize, stream: u32) -> Self {
         assert!(dims == 2 || dims == 3, "tiles are 2D or 3D");
         assert!(

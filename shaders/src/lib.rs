@@ -87,7 +87,7 @@ pub const BAKE2: &str = include_str!("../bake2.wgsl");
 pub const BAKE3: &str = include_str!("../bake3.wgsl");
 
 /// The constants `bake.wgsl` needs: tile side, hash seed and stream, the odd shift of the
-/// even/odd fix, and the CPU-measured normalisation (`noise::Tile::stats`).
+/// (3D tile's) even/odd fix, and the CPU-measured normalisation (`noise::Tile::stats`).
 pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: [f64; 3], inv_sd: [f64; 3]) -> String {
     let offset = odd_offset(n);
     let v3 = |v: [f64; 3]| {
