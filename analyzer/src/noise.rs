@@ -129,11 +129,9 @@ impl Tile {
 /// are the real and imaginary parts of one draw (the Gaussian values `0 … 2n²`), component 2 the
 /// real part of the next (`2n² … 4n²`).
 fn spectral_components(seed: u32, n: usize, stream: u32) -> [(Vec<f32>, TileStats); COMPONENTS] {
-    use std::sync::OnceLock;
-    static MAGNITUDE: OnceLock<Vec<f64>> = OnceLock::new();
     let computed;
     let magnitude = if n == TILE_2D {
-        MAGNITUDE.get_or_init(|| spectral::magnitude(TILE_2D))
+        spectral::tile2_magnitude()
     } else {
         computed = spectral::magnitude(n);
         &computed

@@ -108,12 +108,17 @@ pub fn bake_constants(n: u32, seed: u32, stream: u32, mean: [f64; 3], inv_sd: [f
 /// The constant the 2D bake needs besides [`bake_constants`]: `TILE_PROFILE`, the ring profile
 /// of the tile's rendered power (`noise::spectral::ring_profile`, N/2 + 1 values).
 pub fn bake2_constants(profile: &[f64]) -> String {
-    let values: Vec<String> = profile.iter().map(|v| format!("{:?}", *v as f32)).collect();
     format!(
         "const TILE_PROFILE = array<f32, {}>({});\n",
         profile.len(),
-        values.join(", ")
+        float_list(profile)
     )
+}
+
+/// `values` as f32 literals, comma-separated (the same text in WGSL and GLSL).
+fn float_list(values: &[f64]) -> String {
+    let values: Vec<String> = values.iter().map(|v| format!("{:?}", *v as f32)).collect();
+    values.join(", ")
 }
 
 /// The 2D tile-baking shader for the given constants, [`bake_constants`] and
@@ -197,12 +202,11 @@ pub mod glsl {
 
     /// [`super::bake2_constants`] in GLSL.
     pub fn bake2_constants(profile: &[f64]) -> String {
-        let values: Vec<String> = profile.iter().map(|v| format!("{:?}", *v as f32)).collect();
         format!(
             "const float TILE_PROFILE[{}] = float[{}]({});\n",
             profile.len(),
             profile.len(),
-            values.join(", ")
+            super::float_list(profile)
         )
     }
 

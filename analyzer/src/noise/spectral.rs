@@ -90,7 +90,11 @@ fn ring(kx: usize, ky: usize, n: usize) -> usize {
 /// `0..=n/2` (the disk): the isotropic profile the tile's magnitude takes inside the disk, and
 /// the constant `TILE_PROFILE` of the GPU bake.
 pub fn ring_profile(n: usize) -> Vec<f64> {
-    let expected = expected_power(n);
+    ring_profile_of(&expected_power(n), n)
+}
+
+/// [`ring_profile`] from the band's expected power per bin ([`expected_power`]).
+fn ring_profile_of(expected: &[f64], n: usize) -> Vec<f64> {
     let rings = n / 2 + 1;
     let (mut sum, mut count) = (vec![0.0f64; rings], vec![0usize; rings]);
     for ky in 0..n {
@@ -112,6 +116,13 @@ pub fn tile2_profile() -> &'static [f64] {
     PROFILE.get_or_init(|| ring_profile(super::TILE_2D))
 }
 
+/// [`magnitude`] of the 2D tile ([`super::TILE_2D`]), computed once: every tile of that side
+/// shares it.
+pub fn tile2_magnitude() -> &'static [f64] {
+    static MAGNITUDE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    MAGNITUDE.get_or_init(|| magnitude(super::TILE_2D))
+}
+
 /// `M(u)` at every frequency bin `kx + n·ky` of an `n×n` tile (bins in FFT order): inside the
 /// disk the ring profile over the B-spline's transfer, outside it the wavelet band's own
 /// expected power, over n². `Σ E = n⁴·σ²` for coefficients of variance σ² (Parseval) and the
@@ -119,7 +130,7 @@ pub fn tile2_profile() -> &'static [f64] {
 /// band's raw variance.
 pub fn magnitude(n: usize) -> Vec<f64> {
     let expected = expected_power(n);
-    let profile = ring_profile(n);
+    let profile = ring_profile_of(&expected, n);
     let scale = 1.0 / (n * n) as f64;
     (0..n * n)
         .map(|i| {
