@@ -36,13 +36,22 @@
 //! (rotate the decorrelated channels, rank-match each rotated axis, rotate back): what matching
 //! the channels' joint distribution, not only their marginals, could buy.
 //!
+//! With `--expected`: the model's realisation against ideal fields of its own expected 2D
+//! spectrum (the mean periodogram of 16 realisations), with exact and with Gaussian amplitudes,
+//! and the realisation with its amplitudes set to the expected ones: what a realisation loses
+//! against its spectrum, and whether the amplitudes or the phases lose it.
+//! With `--rounds`: the product as it renders (its RGB output curve is one round of
+//! distribution transfer), then further rounds along fixed rotations, fitted as the product
+//! fits its curve: what more rounds would buy before the parameter budget.
+//!
 //! ```text
 //! cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
-//!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands | --orient | --colour]
+//!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands | --orient | --colour | --expected | --rounds]
 //! ```
 
-#[path = "lab_common/ladder.rs"]
+#[path = "../lab_common/ladder.rs"]
 mod ladder;
+mod realisation;
 use ladder::{decorrelated, mean_se, print_ladder, rank_match, run_ladder, stochastic_photos};
 use proctex::analyze::{Options, analyze_photo};
 use proctex::evaluate::random_phase;
@@ -50,6 +59,7 @@ use proctex::input::Photo;
 use proctex::render::{Prepared, colour, texture_noise, tile_for};
 use proctex::rng;
 use proctex::spectrum::{fft2_real, ifft2, spectrum_real};
+use realisation::{EXPECTED_RUNGS, ROUNDS_RUNGS, synthesise_expected, synthesise_rounds};
 
 const RUNGS: [&str; 7] = [
     "floor (full spectrum, exact)",
@@ -556,10 +566,16 @@ fn main() {
     let bands = all.iter().any(|a| a == "--bands");
     let orient = all.iter().any(|a| a == "--orient");
     let colour_ladder = all.iter().any(|a| a == "--colour");
+    let expected = all.iter().any(|a| a == "--expected");
+    let rounds = all.iter().any(|a| a == "--rounds");
     let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
     let manifest = *args.first().expect("MANIFEST.tsv");
     let seeds: Vec<u32> = (1..=args.get(1).map_or(2, |s| s.parse().unwrap())).collect();
-    let names: &[&str] = if colour_ladder {
+    let names: &[&str] = if rounds {
+        &ROUNDS_RUNGS
+    } else if expected {
+        &EXPECTED_RUNGS
+    } else if colour_ladder {
         &COLOUR_RUNGS
     } else if orient {
         &ORIENT_RUNGS
@@ -570,7 +586,11 @@ fn main() {
     };
     let photos = stochastic_photos(manifest);
     let table = run_ladder(&photos, &seeds, names.len(), &|rung, src, seed| {
-        if colour_ladder {
+        if rounds {
+            synthesise_rounds(rung, src, seed)
+        } else if expected {
+            synthesise_expected(rung, src, seed)
+        } else if colour_ladder {
             synthesise_colour(rung, src, seed)
         } else if orient {
             synthesise_orient(rung, src, seed)
