@@ -41,8 +41,8 @@ async function dropBytes(page, bytes, name, type = 'image/png') {
   }, [[...bytes], name, type]);
 }
 
-// A real PNG of `w × h` black pixels: ~1 MB for 20000², 1.6 GB once decoded.
-function blackPng(w, h) {
+// A PNG whose header says `w × h` (1.6 GB decoded for 20000²) but whose data is a few bytes.
+function headerOnlyPng(w, h) {
   const crc32 = (buf) => {
     let c = ~0;
     for (const b of buf) {
@@ -59,8 +59,9 @@ function blackPng(w, h) {
   };
   const ihdr = Buffer.alloc(13);
   ihdr.writeUInt32BE(w, 0); ihdr.writeUInt32BE(h, 4); ihdr[8] = 8; ihdr[9] = 2;
-  const row = Buffer.alloc(1 + 3 * w);
-  const deflate = zlib.deflateSync(Buffer.concat(Array(h).fill(row)), { level: 9 });
+  // One black row where the header promises `h`: a decoder would fail on the missing rows, so
+  // an answer naming the size limit can only have come from the header.
+  const deflate = zlib.deflateSync(Buffer.alloc(1 + 3 * w), { level: 9 });
   return Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr),
     chunk('IDAT', deflate), chunk('IEND', Buffer.alloc(0))]);
 }
@@ -155,16 +156,15 @@ test('a share link opens a texture only: a presets library in it is refused', as
 
 test('oversized and unsupported photos are refused before decoding, with the limit', async ({ page }) => {
   await openApp(page);
-  const t0 = Date.now();
-  await dropBytes(page, blackPng(20000, 20000), 'huge.png');
+  await dropBytes(page, headerOnlyPng(20000, 20000), 'huge.png');
   await until(page, (s) => s.error !== null);
   let s = await state(page);
   expect(s.error).toContain('huge.png');
   expect(s.error).toContain('16384');
-  expect(Date.now() - t0).toBeLessThan(15_000); // refused from the header, not after a decode
+  expect(s.error).not.toMatch(/cannot read|truncat|unexpected end/i); // refused from the header: the rows are missing
   expect(s.photo).toBe('stk_rock_mountain_512.png');
   await page.evaluate(() => window.proctex.requestRepaint());
-  await dropBytes(page, blackPng(9000, 8000), 'wide.png');
+  await dropBytes(page, headerOnlyPng(9000, 8000), 'wide.png');
   await until(page, (s) => s.error !== null && s.error.includes('wide.png'));
   s = await state(page);
   expect(s.error).toContain('50.0 MP');
