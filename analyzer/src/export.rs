@@ -184,7 +184,7 @@ pub fn wgsl(params: &Params) -> Result<String> {
 
 /// The complete GLSL ES 3.00 shader of a texture: one text that compiles as the display
 /// fragment shader as-is, as the full-screen vertex shader with `#define PROCTEX_VERTEX`, and
-/// as the tile-bake passes with `#define PROCTEX_PASS 1|2|3` (plane) or `1|2|3|4` (solid), each
+/// as the tile-bake passes with `#define PROCTEX_PASS 1|2|3|4|5` (plane) or `1|2|3|4` (solid), each
 /// define inserted after the `#version` line.
 pub fn glsl(params: &Params) -> Result<String> {
     params.validate()?;

@@ -75,7 +75,13 @@ fn exported_wgsl_validates_with_naga() {
                 "fs_bake3_tile",
             ]
         } else {
-            &["fs_bake_spectrum", "fs_bake_rows", "fs_bake_tile"]
+            &[
+                "fs_bake_spectrum",
+                "fs_bake_rows_inner",
+                "fs_bake_rows",
+                "fs_bake_cols_inner",
+                "fs_bake_tile",
+            ]
         };
         for want in ["vs_main", "fs_main", "vs_bake"].iter().chain(passes) {
             assert!(entries.contains(want), "{name}: no {want}");
@@ -145,9 +151,10 @@ fn exported_glsl_compiles_with_glslang() {
                 ("#define PROCTEX_PASS 1", "frag"),
                 ("#define PROCTEX_PASS 2", "frag"),
                 ("#define PROCTEX_PASS 3", "frag"),
+                ("#define PROCTEX_PASS 4", "frag"),
             ];
-            if params.solid {
-                stages.push(("#define PROCTEX_PASS 4", "frag"));
+            if !params.solid {
+                stages.push(("#define PROCTEX_PASS 5", "frag"));
             }
             for (d, (define, ext)) in stages.iter().enumerate() {
                 let stage = format!("{version}\n{define}\n{rest}");
@@ -240,14 +247,17 @@ fn exported_morphs_validate_and_compile() {
         let src = proctex::export::morph_glsl(&keys).unwrap();
         assert!(src.contains("uniform float proctex_t;"));
         let rest = src.split_once('\n').unwrap().1;
-        let mut stages = vec![
+        let stages = [
             ("// display", "frag"),
             ("#define PROCTEX_VERTEX", "vert"),
             ("#define PROCTEX_PASS 1", "frag"),
+            // The last pass of either bake (plane 5, solid 4), the one that normalises.
+            if keys[0].solid {
+                ("#define PROCTEX_PASS 4", "frag")
+            } else {
+                ("#define PROCTEX_PASS 5", "frag")
+            },
         ];
-        if keys[0].solid {
-            stages.push(("#define PROCTEX_PASS 4", "frag"));
-        }
         for (d, (define, ext)) in stages.iter().enumerate() {
             compile(
                 &dir,

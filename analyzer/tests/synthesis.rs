@@ -209,33 +209,34 @@ fn one_period_tiles_seamlessly() {
     let mut p = analyze_photo(&sample("skimage_grass_512.png"), &Options::default())
         .unwrap()
         .params;
-    // Full model (8 bands): the period is 128·2^7 texels; one period at 512 px is minified 32×
+    // Full model (8 bands): the period is 512·2^7 texels; one period at 512 px is minified 128×
     // and band clamping keeps it alias-free.
     let period = period_texels(&p) as f32 * p.transform.scale;
-    assert_eq!(period, 16384.0);
+    assert_eq!(period, 65536.0);
     let view = View {
         origin: [0.0, 0.0],
         pixel_size: period / 512.0,
         z: 0.0,
     };
     assert_seamless(&render(&p, 512, 512, &view), "8 bands, minified");
-    // A 3-band model has a 512-texel period: rendered at one texel per pixel, all bands on.
+    // A 2-band model has a 1024-texel period: rendered at one texel per pixel, all bands on.
     let m = p.model.noise_layer_mut();
     for w in &mut m.weights {
-        w.truncate(3);
+        w.truncate(2);
     }
-    assert_eq!(period_texels(&p), 512);
+    let n = period_texels(&p) as usize;
+    assert_eq!(n, 1024);
     let view = View {
         origin: [0.0, 0.0],
-        pixel_size: 512.0 * p.transform.scale / 512.0,
+        pixel_size: p.transform.scale,
         z: 0.0,
     };
-    assert_seamless(&render(&p, 512, 512, &view), "3 bands, 1:1");
+    assert_seamless(&render(&p, n as u32, n as u32, &view), "2 bands, 1:1");
     // And exactly periodic: two periods side by side repeat pixel for pixel.
-    let two = render(&p, 1024, 64, &view);
+    let two = render(&p, 2 * n as u32, 64, &view);
     for y in 0..64usize {
-        for x in 0..512usize {
-            let (a, b) = (two.pixels[y * 1024 + x], two.pixels[y * 1024 + x + 512]);
+        for x in 0..n {
+            let (a, b) = (two.pixels[y * 2 * n + x], two.pixels[y * 2 * n + x + n]);
             for c in 0..3 {
                 assert!((a[c] - b[c]).abs() < 2e-3, "({x},{y}): {a:?} vs {b:?}");
             }

@@ -1,6 +1,6 @@
 // Baking wavelet-noise tiles from the seed (GLSL twin of shaders/bake.wgsl; Rust twins in
 // analyzer/src/rng.rs and analyzer/src/noise.rs): what the 2D and 3D bakes share. The passes are
-// in bake2.glsl (2D tile, `#define PROCTEX_PASS 1|2|3`) and bake3.glsl (3D tile of solid
+// in bake2.glsl (2D tile, `#define PROCTEX_PASS 1|2|3|4|5`) and bake3.glsl (3D tile of solid
 // textures, `PROCTEX_PASS 1|2|3|4`), fragment passes into RGBA32F targets (the three components in RGB). `N`, `TILE_SEED`,
 // `TILE_STREAM`, `TILE_ODD_OFFSET`, `TILE_MEAN` and `TILE_INV_SD` are generated constants.
 // Unsigned arithmetic wraps in GLSL ES 3.00 as in WGSL; indices wrap with masks (N is a power of

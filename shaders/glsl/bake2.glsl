@@ -1,8 +1,11 @@
 // Baking the 2D noise tile (GLSL twin of shaders/bake2.wgsl); uses bake.glsl. Complex white
-// noise times a fixed magnitude M, inverse-transformed; three passes, N x N each:
+// noise times a fixed magnitude M, inverse-transformed, each inverse DFT split in two passes
+// (the four-step DFT, N = SPLIT x N/SPLIT); five passes, N x N each:
 //   pass 1: Z*M of both draws at frequency bin (kx, ky) = texel (x, y)
-//   pass 2: inverse DFT along x, reads proctex_bake_src
-//   pass 3: inverse DFT along y, components, normalised; reads proctex_bake_src
+//   pass 2: the inner sums of the inverse DFT along x, reads proctex_bake_src
+//   pass 3: the outer sums: the inverse DFT along x, reads proctex_bake_src
+//   pass 4: the inner sums of the inverse DFT along y, reads proctex_bake_src
+//   pass 5: the outer sums along y, components, normalised; reads proctex_bake_src
 // TILE_PROFILE (N/2 + 1 values) is a generated constant.
 
 const float TAU = 6.283185307179586;
@@ -79,7 +82,46 @@ float tile_magnitude(int kx, int ky) {
 }
 #endif
 
-// One entry per pass (twins of fs_bake_spectrum, fs_bake_rows, fs_bake_tile).
+#if PROCTEX_PASS >= 2
+// The four-step split of an inverse DFT along one axis (bake2.wgsl has the derivation).
+const int SPLIT = 16;
+
+vec4 axis_texel(int along, int other, int axis) {
+    if (axis == 0) {
+        return texelFetch(proctex_bake_src, ivec2(along, other), 0);
+    }
+    return texelFetch(proctex_bake_src, ivec2(other, along), 0);
+}
+
+vec4 cmul2(vec4 v, vec2 e) {
+    return vec4(cmul(v.xy, e), cmul(v.zw, e));
+}
+
+vec4 inner_sums(int c, int other, int axis) {
+    int n2 = int(N) / SPLIT;
+    int k1 = c % SPLIT;
+    int x2 = c / SPLIT;
+    vec4 s = vec4(0.0);
+    for (int k2 = 0; k2 < n2; k2++) {
+        s += cmul2(axis_texel(k1 + SPLIT * k2, other, axis), twiddle(k2 * x2 * SPLIT, 1.0));
+    }
+    return cmul2(s, twiddle(k1 * x2, 1.0));
+}
+
+vec4 outer_sums(int x, int other, int axis) {
+    int n2 = int(N) / SPLIT;
+    int x2 = x % n2;
+    int x1 = x / n2;
+    vec4 s = vec4(0.0);
+    for (int k1 = 0; k1 < SPLIT; k1++) {
+        s += cmul2(axis_texel(k1 + SPLIT * x2, other, axis), twiddle(k1 * x1 * n2, 1.0));
+    }
+    return s;
+}
+#endif
+
+// One entry per pass (twins of fs_bake_spectrum, fs_bake_rows_inner, fs_bake_rows,
+// fs_bake_cols_inner, fs_bake_tile).
 void main() {
     int x = int(gl_FragCoord.x);
     int y = int(gl_FragCoord.y);
@@ -93,20 +135,13 @@ void main() {
         gaussian(TILE_SEED, TILE_STREAM, draw + 2u * b),
         gaussian(TILE_SEED, TILE_STREAM, draw + 2u * b + 1u));
 #elif PROCTEX_PASS == 2
-    vec4 s = vec4(0.0);
-    for (int kx = 0; kx < int(N); kx++) {
-        vec4 v = texelFetch(proctex_bake_src, ivec2(kx, y), 0);
-        vec2 e = twiddle(kx * x, 1.0);
-        s += vec4(cmul(v.xy, e), cmul(v.zw, e));
-    }
-    proctex_bake_out = s;
+    proctex_bake_out = inner_sums(x, y, 0);
+#elif PROCTEX_PASS == 3
+    proctex_bake_out = outer_sums(x, y, 0);
+#elif PROCTEX_PASS == 4
+    proctex_bake_out = inner_sums(y, x, 1);
 #else
-    vec4 s = vec4(0.0);
-    for (int ky = 0; ky < int(N); ky++) {
-        vec4 v = texelFetch(proctex_bake_src, ivec2(x, ky), 0);
-        vec2 e = twiddle(ky * y, 1.0);
-        s += vec4(cmul(v.xy, e), cmul(v.zw, e));
-    }
+    vec4 s = outer_sums(y, x, 1);
     proctex_bake_out = vec4((s.xyz - TILE_MEAN) * TILE_INV_SD, 0.0);
 #endif
 }

@@ -81,7 +81,8 @@ pub fn seamless_shader() -> String {
 /// Baking noise tiles from the seed on the GPU (exported snippets): what the 2D and 3D bakes
 /// share.
 pub const BAKE: &str = include_str!("../bake.wgsl");
-/// The 2D tile's bake passes (`fs_bake_spectrum`, `fs_bake_rows`, `fs_bake_tile`).
+/// The 2D tile's bake passes (`fs_bake_spectrum`, `fs_bake_rows_inner`, `fs_bake_rows`,
+/// `fs_bake_cols_inner`, `fs_bake_tile`).
 pub const BAKE2: &str = include_str!("../bake2.wgsl");
 /// The 3D tile's bake passes into slice atlases (`fs_bake3_down_x|y|z`, `fs_bake3_tile`).
 pub const BAKE3: &str = include_str!("../bake3.wgsl");
@@ -122,8 +123,8 @@ fn float_list(values: &[f64]) -> String {
 }
 
 /// The 2D tile-baking shader for the given constants, [`bake_constants`] and
-/// [`bake2_constants`] (entry points `vs_bake`, `fs_bake_spectrum`, `fs_bake_rows`,
-/// `fs_bake_tile`).
+/// [`bake2_constants`] (entry points `vs_bake`, `fs_bake_spectrum`, `fs_bake_rows_inner`,
+/// `fs_bake_rows`, `fs_bake_cols_inner`, `fs_bake_tile`).
 pub fn bake_shader(constants: &str) -> String {
     [constants, HASH, BAKE, BAKE2].join("\n")
 }
@@ -172,7 +173,7 @@ pub mod glsl {
     pub const PATTERN: &str = include_str!("../glsl/pattern.glsl");
     /// What the tile bakes share (hashes, Gaussian values, filters).
     pub const BAKE: &str = include_str!("../glsl/bake.glsl");
-    /// The 2D tile's bake passes (`PROCTEX_PASS` 1, 2, 3).
+    /// The 2D tile's bake passes (`PROCTEX_PASS` 1 to 5).
     pub const BAKE2: &str = include_str!("../glsl/bake2.glsl");
     /// The 3D tile's bake passes into slice atlases (`PROCTEX_PASS` 1, 2, 3, 4).
     pub const BAKE3: &str = include_str!("../glsl/bake3.glsl");

@@ -41,7 +41,7 @@ const TWIN_FILES: [(&str, &[&str]); 18] = [
 
 /// WGSL function → Rust twin, where the names differ (entry points, whose twin is the CPU
 /// renderer's pixel loop).
-const RENAMED: [(&str, &str); 32] = [
+const RENAMED: [(&str, &str); 38] = [
     // `uniform` would shadow the address space of `var<uniform>` (exported morphs have one).
     ("uniform01", "uniform"),
     ("morph_params", "morph_path"),
@@ -54,12 +54,19 @@ const RENAMED: [(&str, &str); 32] = [
     ("fs_solid", "render_solid"),
     ("fs_solid_volume", "render_solid_volume"),
     // The 2D bake's passes together are Tile::generate of the spectral tile: the spectrum and
-    // the two inverse DFTs are spectral::field_pair (its FFT), the magnitude and the closed
-    // form of the band's power spectral::magnitude and expected_power_at (with their helpers:
-    // the transfers, the signed bin, the B-spline's power); wrap is the `rem_euclid` indexing.
+    // the two inverse DFTs (each split in two passes, with their helpers) are
+    // spectral::field_pair (its FFT), the magnitude and the closed form of the band's power
+    // spectral::magnitude and expected_power_at (with their helpers: the transfers, the signed
+    // bin, the B-spline's power); wrap is the `rem_euclid` indexing.
     ("vs_bake", "generate"),
     ("fs_bake_spectrum", "field_pair"),
+    ("fs_bake_rows_inner", "field_pair"),
     ("fs_bake_rows", "field_pair"),
+    ("fs_bake_cols_inner", "field_pair"),
+    ("axis_texel", "field_pair"),
+    ("cmul2", "field_pair"),
+    ("inner_sums", "field_pair"),
+    ("outer_sums", "field_pair"),
     ("fs_bake_tile", "generate"),
     ("twiddle", "field_pair"),
     ("cmul", "field_pair"),

@@ -404,6 +404,20 @@ fn bake_pass(
     target
 }
 
+/// The 2D tile baked by the passes of bake2.wgsl in the order its header gives, `n` × `n`.
+fn bake2(gpu: &Gpu, module: &wgpu::ShaderModule, n: u32) -> wgpu::Texture {
+    let mut tile = bake_pass(gpu, module, "fs_bake_spectrum", None, n, n);
+    for entry in [
+        "fs_bake_rows_inner",
+        "fs_bake_rows",
+        "fs_bake_cols_inner",
+        "fs_bake_tile",
+    ] {
+        tile = bake_pass(gpu, module, entry, Some(&tile), n, n);
+    }
+    tile
+}
+
 /// An rgba32float texture's values, four per texel.
 fn read_rgba32(gpu: &Gpu, t: &wgpu::Texture, w: u32, h: u32) -> Vec<f32> {
     read_texture(gpu, t, w, h, 16)
@@ -432,9 +446,7 @@ fn tile_baked_on_the_gpu_equals_the_cpu_tile() {
                 label: Some("bake"),
                 source: wgpu::ShaderSource::Wgsl(proctex_shaders::bake_shader(&consts).into()),
             });
-        let spectrum = bake_pass(&gpu, &module, "fs_bake_spectrum", None, n, n);
-        let rows = bake_pass(&gpu, &module, "fs_bake_rows", Some(&spectrum), n, n);
-        let baked = bake_pass(&gpu, &module, "fs_bake_tile", Some(&rows), n, n);
+        let baked = bake2(&gpu, &module, n);
         let got = read_rgba32(&gpu, &baked, n, n);
         let max = got
             .iter()
@@ -609,10 +621,7 @@ fn exported_wgsl_matches_cpu(gpu: &Gpu, src: &str, cases: &[(String, Params, Opt
     let tile = if solid {
         bake3(gpu, &module, proctex::noise::TILE_3D as u32)
     } else {
-        let n = proctex::noise::TILE_2D as u32;
-        let a = bake_pass(gpu, &module, "fs_bake_spectrum", None, n, n);
-        let b = bake_pass(gpu, &module, "fs_bake_rows", Some(&a), n, n);
-        bake_pass(gpu, &module, "fs_bake_tile", Some(&b), n, n)
+        bake2(gpu, &module, proctex::noise::TILE_2D as u32)
     };
     let (w, h) = (256u32, 192u32);
     let format = wgpu::TextureFormat::Rgba8Unorm;

@@ -11,13 +11,15 @@ pub(super) fn glsl_host_notes_plane(n: u32) -> String {
         "\
 // Proctex texture, exported by `proctex export --format glsl` (params format proctex/1).
 // GLSL ES 3.00 (WebGL2). For desktop GLSL, replace the first line with `#version 330 core`.
-// This one text is five programs' shaders: insert one line after `#version` to pick the stage.
+// This one text is seven programs' shaders: insert one line after `#version` to pick the stage.
 //   `#define PROCTEX_VERTEX`  the vertex shader of every program: a full-screen triangle,
 //                             drawArrays(TRIANGLES, 0, 3) with no attributes;
 //   `#define PROCTEX_PASS 1`  bake pass 1 into an RGBA32F target A of {n} x {n}, no textures;
 //   `#define PROCTEX_PASS 2`  bake pass 2 into an RGBA32F target B of {n} x {n}, A bound to the
 //                             sampler `proctex_bake_src`;
-//   `#define PROCTEX_PASS 3`  bake pass 3 into an RGBA32F target T of {n} x {n}, B bound to
+//   `#define PROCTEX_PASS 3`  bake pass 3 into A, B bound to `proctex_bake_src`;
+//   `#define PROCTEX_PASS 4`  bake pass 4 into B, A bound to `proctex_bake_src`;
+//   `#define PROCTEX_PASS 5`  bake pass 5 into an RGBA32F target T of {n} x {n}, B bound to
 //                             `proctex_bake_src`;
 //   nothing                   the texture: T bound to `proctex_tile2`, one world unit (one photo
 //                             pixel) per screen pixel, y down from the top of a viewport
@@ -69,11 +71,13 @@ pub(super) fn wgsl_host_notes_plane(n: u32) -> String {
     format!(
         "\
 // Proctex texture, exported by `proctex export --format wgsl` (params format proctex/1).
-// Host, once: make three rgba32float render targets and draw a full-screen triangle (3 vertices,
-// no buffers) into each with `vs_bake` and, in order,
-//   fs_bake_spectrum into A ({n} × {n}), no bindings;
-//   fs_bake_rows     into B ({n} × {n}), A bound at @group(0) @binding(0);
-//   fs_bake_tile     into T ({n} × {n}), B bound at @group(0) @binding(0).
+// Host, once: make three rgba32float render targets A, B and T, each {n} × {n}, and draw a
+// full-screen triangle (3 vertices, no buffers) with `vs_bake` and, in order,
+//   fs_bake_spectrum   into A, no bindings;
+//   fs_bake_rows_inner into B, A bound at @group(0) @binding(0);
+//   fs_bake_rows       into A, B bound at @group(0) @binding(0);
+//   fs_bake_cols_inner into B, A bound at @group(0) @binding(0);
+//   fs_bake_tile       into T, B bound at @group(0) @binding(0).
 // Then draw with `vs_main`/`fs_main` (one world unit = one photo pixel per screen pixel), T at
 // @group(0) @binding(1) and @binding(2); or call `proctex(p, pixel_size)` from your own
 // fragment shader (p in world units).
