@@ -86,9 +86,9 @@ pub struct Tile {
 }
 
 impl Tile {
-    /// The 2D tile of `seed`.
+    /// The 2D tile of `seed` (from [`recent_2d`] when it was made lately).
     pub fn new_2d(seed: u32) -> Self {
-        Self::generate(seed, 2, TILE_2D, rng::stream::TILE_2D)
+        recent_2d(seed)
     }
 
     /// The 3D tile of `seed`.
@@ -130,6 +130,34 @@ impl Tile {
     }
 }
 
+/// The 2D tile of `seed`, kept for the next caller among the last [`RECENT_2D`] made. One
+/// analysis renders the same few seeds many times (the noise model's tone curve at its fit
+/// seeds, every family's fit and ranking at the analysis seed), and a 512² tile takes tens of
+/// milliseconds to make where a copy takes a fraction of one. Same seed, same tile: what it
+/// returns does not depend on what was asked before.
+fn recent_2d(seed: u32) -> Tile {
+    use std::sync::{Arc, Mutex};
+    static RECENT: Mutex<Vec<(u32, Arc<Tile>)>> = Mutex::new(Vec::new());
+    let found = RECENT
+        .lock()
+        .ok()
+        .and_then(|r| r.iter().find(|(s, _)| *s == seed).map(|(_, t)| t.clone()));
+    let tile = found.unwrap_or_else(|| {
+        let tile = Arc::new(Tile::generate(seed, 2, TILE_2D, rng::stream::TILE_2D));
+        if let Ok(mut r) = RECENT.lock() {
+            if r.len() == RECENT_2D {
+                r.remove(0);
+            }
+            r.push((seed, tile.clone()));
+        }
+        tile
+    });
+    Tile::clone(&tile)
+}
+
+/// How many 2D tiles [`recent_2d`] keeps (3 MB each).
+const RECENT_2D: usize = 8;
+
 /// The 2D tile's components drawn in the frequency domain ([`spectral`]): components 0 and 1
 /// are the real and imaginary parts of one draw (the Gaussian values `0 … 2n²`), component 2 the
 /// real part of the next (`2n² … 4n²`).
@@ -147,9 +175,13 @@ fn spectral_components(seed: u32, n: usize, stream: u32) -> [(Vec<f32>, TileStat
             rng::gaussian(seed, stream, d * values + i)
         })
     };
-    let [c0, c1] = draw(0);
-    let [c2, _] = draw(1);
-    [c0, c1, c2].map(|c| normalised(c, n, 2))
+    let mut draws = crate::parallel::map_in_order(&[0u32, 1], |&d| draw(d)).into_iter();
+    let (Some([c0, c1]), Some([c2, _])) = (draws.next(), draws.next()) else {
+        unreachable!("two draws");
+    };
+    let mut planes =
+        crate::parallel::map_in_order(&[c0, c1, c2], |c| normalised(c.clone(), n, 2)).into_iter();
+    std::array::from_fn(|_| planes.next().expect("three components"))
 }
 
 /// One component of a (3D) tile by Cook & DeRose's construction: its normalised coefficients
@@ -278,15 +310,22 @@ fn evaluated_variance(c: &[f64], n: usize, dims: usize) -> f64 {
     ];
     let mut f = c.to_vec();
     let mut line = vec![0.0; n];
+    let mut values = vec![0.0; n];
+    // The wrapped neighbours' positions along a line, once.
+    let neighbours: Vec<[usize; 5]> = (0..n)
+        .map(|i| std::array::from_fn(|d| (i + n + d - 2) % n))
+        .collect();
     for axis in 0..dims {
         for_each_line(n, dims, axis, |start, stride| {
-            for i in 0..n {
+            for (i, v) in values.iter_mut().enumerate() {
+                *v = f[start + i * stride];
+            }
+            for (l, ks) in line.iter_mut().zip(&neighbours) {
                 let mut s = 0.0;
-                for (d, a) in AUTO.iter().enumerate() {
-                    let k = (i + n + d - 2) % n;
-                    s += a * f[start + k * stride];
+                for (a, &k) in AUTO.iter().zip(ks) {
+                    s += a * values[k];
                 }
-                line[i] = s;
+                *l = s;
             }
             for i in 0..n {
                 f[start + i * stride] = line[i];

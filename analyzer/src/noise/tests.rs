@@ -387,9 +387,11 @@ fn spectral_expected_power_closed_form_matches_the_impulse_responses() {
     // four polyphase impulse responses.
     let n = 32;
     let exact = spectral::expected_power(n);
+    let grid = spectral::expected_power_grid(n);
     for ky in 0..n {
         for kx in 0..n {
             let closed = spectral::expected_power_at(n, kx, ky);
+            assert_eq!(closed, grid[kx + n * ky], "bin ({kx}, {ky})");
             let want = exact[kx + n * ky];
             assert!(
                 (closed - want).abs() <= 1e-9 * (n * n) as f64 + 1e-9 * want,
