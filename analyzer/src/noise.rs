@@ -32,9 +32,11 @@ use crate::rng;
 /// Side of the 2D tile. Cook & DeRose and Lagae use 128; then the finest band repeats every 128
 /// pixels, four times across a 256² crop and 8 × 15 times across a 1080p view. At 512 the noise
 /// model alone gains 0.032 ± 0.011 in overall fidelity on the 15 dev photos whose 256² crops
-/// held the repeat, 0.066 ± 0.018 on the 4 such shipped samples, and nothing (+0.008 ± 0.014)
-/// on the 128² crops that never held it (6 seeds, paired per photo; docs/measurements.md, "The
-/// model's realisation against its own expected spectrum"). 512² is 4 MB as rgba32float.
+/// held the repeat, 0.063 on the 4 such shipped samples, and nothing (+0.007 ± 0.013) on the
+/// 128² crops that never held it (6 seeds, paired per photo). Chosen among 128, 256 and 512 by
+/// 4-fold cross-validation over the dev photos: every fold picks 512, held out −0.015 ± 0.009
+/// (docs/measurements.md, "The 2D tile 512 coefficients wide, in the product"). 512² is 4 MB
+/// as rgba32float.
 pub const TILE_2D: usize = 512;
 /// Side of the 3D tile used for solid textures (64³ coefficients, 1 MiB as `f32`).
 pub const TILE_3D: usize = 64;

@@ -127,7 +127,7 @@ pub fn ring_profile(n: usize) -> Vec<f64> {
     ring_profile_of(&expected_power_grid(n), n)
 }
 
-/// [`ring_profile`] from the band's expected power per bin ([`expected_power`]).
+/// [`ring_profile`] from the band's expected power per bin ([`expected_power_grid`]).
 fn ring_profile_of(expected: &[f64], n: usize) -> Vec<f64> {
     let rings = n / 2 + 1;
     let (mut sum, mut count) = (vec![0.0f64; rings], vec![0usize; rings]);
