@@ -4,6 +4,8 @@
 # validation and the native GPU-vs-CPU shader test), the wasm build, the Playwright tests in
 # Chromium, then the speed benchmarks, analyzer and browser app (they print ratios measured in
 # one run and assert nothing about time; quick mode here, PROCTEX_BENCH=full for the full run).
+# Two slow cargo tests check a sample by default (the retrieval database's freshness, the
+# synthetic retrieval round trip); PROCTEX_TEST=full runs them whole.
 # At the end (also after a failure) it prints every stage's wall time and the ten slowest
 # Playwright tests.
 # Installs what it needs: a Rust toolchain with rustfmt and clippy, Mesa's software Vulkan

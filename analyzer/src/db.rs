@@ -367,13 +367,7 @@ impl Db {
                 out.extend_from_slice(&v.to_le_bytes());
             }
             for i in 0..LEN {
-                let span = hi[i] - lo[i];
-                let q = if span > 0.0 {
-                    ((e.descriptor.0[i] - lo[i]) / span * 255.0).round()
-                } else {
-                    0.0
-                };
-                out.push(q as u8);
+                out.push(level(e.descriptor.0[i], lo[i], hi[i]) as u8);
             }
         }
         out
@@ -447,6 +441,17 @@ impl Db {
 /// The shipped database file.
 pub const SHIPPED: &[u8] = include_bytes!("../data/patterns.ptxdb");
 
+/// A descriptor value's 8-bit level between its bounds over the database (before the cast, so
+/// that a value outside the bounds shows as a level outside 0..=255).
+fn level(v: f32, lo: f32, hi: f32) -> f32 {
+    let span = hi - lo;
+    if span > 0.0 {
+        ((v - lo) / span * 255.0).round()
+    } else {
+        0.0
+    }
+}
+
 /// The query descriptor of a structure map of `w × h`, and how many of its texels one
 /// descriptor pixel covers.
 pub fn query(map: &[f32], w: usize, h: usize) -> (Descriptor, f32) {
@@ -464,8 +469,59 @@ mod tests {
     /// The shipped file is what `proctex build-db` builds from this version's patterns and
     /// descriptor (rebuild it with `proctex build-db -o analyzer/data/patterns.ptxdb`), it
     /// round-trips, and it stays far below the 8 MB budget.
+    ///
+    /// Building all 28,160 entries takes about two minutes on two cores, so by default every
+    /// eighth entry of each family is built again and compared with the shipped one (pattern
+    /// bit for bit, descriptor level for level under the shipped file's bounds): any change to
+    /// a family's sampling, its rendering or the descriptor changes nearly every entry, hence
+    /// the sample's. `PROCTEX_TEST=full` builds the whole database and compares the bytes.
     #[test]
     fn shipped_database_is_fresh_and_small() {
+        assert!(SHIPPED.len() < 8_000_000, "{} bytes", SHIPPED.len());
+        let shipped = Db::shipped();
+        let total: usize = PatternKind::ALL.into_iter().map(samples).sum();
+        assert_eq!(shipped.entries.len(), total);
+        assert!(
+            shipped.to_bytes() == SHIPPED,
+            "the shipped bytes round-trip"
+        );
+        if std::env::var("PROCTEX_TEST").as_deref() != Ok("full") {
+            let stale = "analyzer/data/patterns.ptxdb is stale: run `proctex build-db -o analyzer/data/patterns.ptxdb`";
+            let f32_at = |at: usize| f32::from_le_bytes(SHIPPED[at..at + 4].try_into().unwrap());
+            let lo: Vec<f32> = (0..LEN).map(|i| f32_at(16 + 4 * i)).collect();
+            let hi: Vec<f32> = (0..LEN).map(|i| f32_at(16 + 4 * (LEN + i))).collect();
+            let tile = Tile::new_2d(DB_SEED);
+            let mut first = 0;
+            let mut jobs = Vec::new();
+            for kind in PatternKind::ALL {
+                jobs.extend((0..samples(kind)).step_by(8).map(|i| (kind, i, first + i)));
+                first += samples(kind);
+            }
+            use rayon::prelude::*;
+            jobs.par_iter().for_each(|&(kind, i, at)| {
+                let pattern = sample(kind, i);
+                let kept = &shipped.entries[at].pattern;
+                assert!(
+                    (pattern.kind, pattern.scale.to_bits(), pattern.vector())
+                        == (kept.kind, kept.scale.to_bits(), kept.vector()),
+                    "{stale} ({kind:?} {i})"
+                );
+                let built = describe_pattern(&pattern, DB_SEED, &tile);
+                for (j, (b, s)) in built
+                    .0
+                    .iter()
+                    .zip(&shipped.entries[at].descriptor.0)
+                    .enumerate()
+                {
+                    assert_eq!(
+                        level(*b, lo[j], hi[j]),
+                        level(*s, lo[j], hi[j]),
+                        "{stale} ({kind:?} {i}, descriptor value {j})"
+                    );
+                }
+            });
+            return;
+        }
         let built = Db::build(&|_, _| {});
         let bytes = built.to_bytes();
         assert!(bytes.len() < 8_000_000, "{} bytes", bytes.len());

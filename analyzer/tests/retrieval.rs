@@ -15,11 +15,16 @@ use proctex::retrieve::suggest;
 /// 432 give 77.5 % with the same code (docs/measurements.md, "The synthetic round trip at 432
 /// cases").
 const CASES: usize = 48;
-/// The rate measured on these cases when the noise tile was last changed (the tile drawn in the
-/// frequency domain: 335 of 432; Cook & DeRose's tile: 335 as well). The test guards against a
-/// regression: the rate plus two standard errors must reach it. (The two-tone paper's 90 % is
-/// rejected by these cases: 77 % ± 2.)
-const MEASURED_RATE: f32 = 335.0 / 432.0;
+/// By default every third case of each family is run (144 in all, the rate's standard error
+/// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
+/// `PROCTEX_TEST=full` runs all 432 (the README's row).
+const QUICK_STRIDE: usize = 3;
+/// The rate measured on all 432 cases when the noise tile was last changed (the plane tile 512
+/// coefficients wide: 338 of 432; 335 with the 128-wide tile, drawn in the frequency domain or
+/// by Cook & DeRose's construction). Every third case alone gave 112 of 144 (77.8 %). The test
+/// guards against a regression: the rate plus two standard errors must reach it. (The two-tone
+/// paper's 90 % is rejected by these cases: 78 % ± 2.)
+const MEASURED_RATE: f32 = 338.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
@@ -28,9 +33,15 @@ fn synthetic_round_trip_finds_the_right_family() {
     // Every case's suggestions at once: `suggest` refines the families in parallel, and the
     // last families of one query would leave a core idle (the results do not depend on the
     // order in which rayon runs the work).
+    let stride = if std::env::var("PROCTEX_TEST").as_deref() == Ok("full") {
+        1
+    } else {
+        QUICK_STRIDE
+    };
+    let per_family = CASES.div_ceil(stride);
     let cases: Vec<(PatternKind, usize)> = PatternKind::ALL
         .into_iter()
-        .flat_map(|kind| (0..CASES).map(move |c| (kind, c)))
+        .flat_map(|kind| (0..CASES).step_by(stride).map(move |c| (kind, c)))
         .collect();
     let mut ranked = {
         use rayon::prelude::*;
@@ -48,7 +59,7 @@ fn synthetic_round_trip_finds_the_right_family() {
     for kind in PatternKind::ALL {
         let (mut own, mut own_r) = (0, 0);
         let mut got = Vec::new();
-        for _ in 0..CASES {
+        for _ in 0..per_family {
             let (s, p) = ranked.next().expect("one ranking per case");
             let first = s[0].name;
             let by_retrieval = family_by_retrieval(&s);
@@ -60,10 +71,14 @@ fn synthetic_round_trip_finds_the_right_family() {
                 p.scale, p.rotation_deg
             ));
         }
-        println!("{:<11} {own:>2}/{CASES} → {}", kind.name(), got.join(" "));
+        println!(
+            "{:<11} {own:>2}/{per_family} → {}",
+            kind.name(),
+            got.join(" ")
+        );
         right += own;
         right_r += own_r;
-        total += CASES;
+        total += per_family;
     }
     println!("by refined retrieval distance alone (no noise model): {right_r}/{total}");
     winners.sort_by(f32::total_cmp);
