@@ -49,9 +49,20 @@ worker.onmessage = (e) => {
       lastSuggestions = {
         rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled, timedOut: m.timedOut,
         helpers: m.helpers, helped: m.helped, count: (lastSuggestions?.count ?? 0) + 1,
+        id: m.id, fittedMs: null,
       };
       wasm.suggestionsDone(m.rows, m.thumbs, m.cancelled, m.timedOut, m.best ?? undefined);
     }
+    return;
+  }
+  // A row of the list fitted after it came (the list fits only what decides its order).
+  if (m.type === 'suggestionFitted') {
+    if ((m.id !== photoJob && m.id !== suggestJob) || !appRunning) return;
+    if (lastSuggestions?.id === m.id) {
+      lastSuggestions.rows[m.index] = JSON.parse(m.row);
+      if (m.last) lastSuggestions.fittedMs = m.ms;
+    }
+    wasm.suggestionFitted(m.index, m.row, m.thumb);
     return;
   }
   // The Heeger–Bergen syntheses' rounds (their results resolve the jobs below).

@@ -260,7 +260,31 @@ function suggestStep(s) {
     type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled, timedOut: s.timedOut,
     ms: performance.now() - s.t0, helpers: s.helpers, helped: s.helped,
   }, [thumbs.buffer]);
+  fitRows(s);
 }
+
+// The rows that the ranking did not fit (every family but the best: the order does not depend
+// on them), one per macrotask, so that a new photo, a crop or a click is not kept waiting;
+// each row's texture distance and thumbnail follow the list.
+function fitRows(s) {
+  setTimeout(() => {
+    queue = queue.then(() => {
+      if (suggestion !== s) return; // superseded (and freed)
+      const i = s.job.fitNext();
+      if (i < 0) return;
+      const thumb = s.job.thumbnail(i);
+      const last = s.job.unfitted() === 0;
+      postMessage({
+        type: 'suggestionFitted', id: s.id, index: i, row: s.job.row(i), thumb, last,
+        ms: performance.now() - s.t0,
+      }, [thumb.buffer]);
+      if (!last) fitRows(s);
+    }).catch((err) => {
+      postMessage({ type: 'suggestError', id: s.id, message: `Model suggestions: ${err.message ?? err}` });
+    });
+  }, 0);
+}
+
 
 // Benchmarks: the median milliseconds of `reps` calls of `f`.
 function medianMs(reps, f) {

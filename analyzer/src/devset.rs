@@ -217,10 +217,13 @@ impl PhotoResult {
                         .ranking
                         .iter()
                         .map(|c| {
-                            let render = render_params_at_photo_size(&c.preview, run.source);
+                            // The automatic analysis ranks with every candidate fitted.
+                            let fitted = "every candidate of a full ranking is fitted";
+                            let preview = c.preview.as_ref().expect(fitted);
+                            let render = render_params_at_photo_size(preview, run.source);
                             Candidate {
                                 name: c.name.to_string(),
-                                distance: c.distance,
+                                distance: c.distance.expect(fitted),
                                 score: c.score,
                                 retrieval: c.retrieval_distance,
                                 refined: c.refined_distance,

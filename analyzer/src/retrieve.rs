@@ -133,8 +133,9 @@ pub struct Suggestion {
     /// The pattern (`None` for the noise model) in texels of the analysed photo, and whether
     /// its tones pair reversed.
     pub pattern: Option<(Pattern, bool)>,
-    /// The texture distance of the fitted candidate to the photo (lower is nearer).
-    pub distance: f32,
+    /// The texture distance of the fitted candidate to the photo (lower is nearer); `None`
+    /// for a family not fitted yet ([`Suggester::ranked`], [`Suggester::fit`]).
+    pub distance: Option<f32>,
     /// The ranking key: `distance`, plus [`NOISE_MODEL_MARGIN`] × the photo's own patch-to-patch distance
     /// for structured candidates.
     pub score: f32,
@@ -146,8 +147,9 @@ pub struct Suggestion {
     /// ([`Suggester::pending`]); `false` for a family not refined because the refinement was
     /// stopped.
     pub skipped: bool,
-    /// The candidate fitted on the reduced photo (for thumbnails).
-    pub preview: Params,
+    /// The candidate fitted on the reduced photo (for thumbnails); `None` for a family not
+    /// fitted yet.
+    pub preview: Option<Params>,
 }
 
 /// The texture distance of `params` to the photo whose two-tone line is `tt` and whose
@@ -476,6 +478,16 @@ impl Suggester {
     /// the right one 36 times, by structure distance 43: the fitted ramp and residual noise
     /// blur the very structure that tells families apart.
     pub fn suggestions(&self, db: &Db) -> Vec<Suggestion> {
+        self.ranked(db, usize::MAX)
+    }
+
+    /// [`Suggester::suggestions`] with only the first `fitted` families (by score) fitted and
+    /// rendered; the others have no `distance` or `preview` until [`Suggester::fit`] fits
+    /// them. The order does not depend on the fits: the families are ordered by their
+    /// structure distance, and the noise model is placed against the best family's texture
+    /// distance, so `fitted` = 1 gives the same order as every fit (what the browser's worker
+    /// shows first; the other thumbnails follow one by one).
+    pub fn ranked(&self, db: &Db, fitted: usize) -> Vec<Suggestion> {
         let tile = Tile::new_2d(self.opts.seed);
         let margin = NOISE_MODEL_MARGIN * self_distance(db, &self.tt);
         let mut out: Vec<Suggestion> = Vec::with_capacity(self.starts.len() + 1);
@@ -484,49 +496,84 @@ impl Suggester {
         out.push(Suggestion {
             name: "noise",
             pattern: None,
-            distance,
+            distance: Some(distance),
             score: 0.0,
             retrieval_distance: 0.0,
             refined_distance: None,
             skipped: false,
-            preview: noise,
+            preview: Some(noise),
         });
-        // Each family fitted and rendered: independent, so in parallel on native.
         let complete = self.pending().is_empty();
-        let families: Vec<(&Vec<Match>, &Refined)> =
-            self.starts.iter().zip(&self.refined).collect();
-        let fits = crate::parallel::map_in_order(&families, |&(_, (p, _, swapped))| {
-            let mut p = p.clone();
-            p.scale *= self.per_px;
-            let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, &tile).params;
-            let distance = texture_distance(db, &self.tt, &self.q, &fitted, &tile);
-            (p, fitted, distance)
-        });
-        for ((starts, (_, refined_distance, swapped)), (mut p, fitted, distance)) in
-            families.into_iter().zip(fits)
-        {
-            let m = &starts[0];
-            p.scale *= self.texels_per_small;
-            out.push(Suggestion {
-                name: p.kind.name(),
-                pattern: Some((p, *swapped)),
-                distance,
-                score: refined_distance.unwrap_or(m.distance) + margin,
-                retrieval_distance: m.distance,
-                refined_distance: *refined_distance,
-                skipped: complete && refined_distance.is_none(),
-                preview: fitted,
-            });
+        let mut families: Vec<Suggestion> = self
+            .starts
+            .iter()
+            .zip(&self.refined)
+            .map(|(starts, (p, refined_distance, swapped))| {
+                let m = &starts[0];
+                let mut p = p.clone();
+                // In two steps, as the fit scales it (the same bits as before the fits
+                // were split from the order).
+                p.scale *= self.per_px;
+                p.scale *= self.texels_per_small;
+                Suggestion {
+                    name: p.kind.name(),
+                    pattern: Some((p, *swapped)),
+                    distance: None,
+                    score: refined_distance.unwrap_or(m.distance) + margin,
+                    retrieval_distance: m.distance,
+                    refined_distance: *refined_distance,
+                    skipped: complete && refined_distance.is_none(),
+                    preview: None,
+                }
+            })
+            .collect();
+        families.sort_by(|a, b| a.score.total_cmp(&b.score));
+        // The first `fitted` families fitted and rendered: independent, so in parallel on
+        // native.
+        let n = fitted.min(families.len());
+        let fits =
+            crate::parallel::map_in_order(&families[..n], |f| self.fit_family(db, &tile, f.name));
+        for (f, (params, distance)) in families.iter_mut().zip(fits) {
+            f.distance = Some(distance);
+            f.preview = Some(params);
         }
-        out[1..].sort_by(|a, b| a.score.total_cmp(&b.score));
+        out.extend(families);
         out[0].score = match out.get(1) {
             // Right after the best family: still offered, never first.
             Some(best) if self.dark_network => best.score.next_up(),
-            Some(best) => out[0].distance - (best.distance - best.score) - margin,
-            None => out[0].distance,
+            Some(best) => {
+                let best_distance = best.distance.expect("the best family is fitted");
+                distance - (best_distance - best.score) - margin
+            }
+            None => distance,
         };
         out.sort_by(|a, b| a.score.total_cmp(&b.score));
         out
+    }
+
+    /// Fits `s` (a family of [`Suggester::ranked`] not fitted yet) as the ranking fits its
+    /// first families; nothing for a fitted one.
+    pub fn fit(&self, db: &Db, s: &mut Suggestion) {
+        if s.preview.is_some() {
+            return;
+        }
+        let (params, distance) = self.fit_family(db, &Tile::new_2d(self.opts.seed), s.name);
+        s.distance = Some(distance);
+        s.preview = Some(params);
+    }
+
+    /// Family `name`'s refined pattern fitted on the reduced photo, and its texture distance.
+    fn fit_family(&self, db: &Db, tile: &Tile, name: &str) -> (Params, f32) {
+        let (p, _, swapped) = self
+            .refined
+            .iter()
+            .find(|(p, _, _)| p.kind.name() == name)
+            .expect("a family of this suggester");
+        let mut p = p.clone();
+        p.scale *= self.per_px;
+        let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, tile).params;
+        let distance = texture_distance(db, &self.tt, &self.q, &fitted, tile);
+        (fitted, distance)
     }
 }
 

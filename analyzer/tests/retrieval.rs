@@ -63,7 +63,7 @@ fn synthetic_round_trip_finds_the_right_family() {
             let (s, p) = ranked.next().expect("one ranking per case");
             let first = s[0].name;
             let by_retrieval = family_by_retrieval(&s);
-            winners.push(s[0].distance);
+            winners.push(s[0].distance.expect("suggest fits every candidate"));
             own += usize::from(first == kind.name());
             own_r += usize::from(by_retrieval == kind.name());
             got.push(format!(
@@ -167,4 +167,32 @@ fn the_refinement_skips_only_families_that_cannot_reach_the_top_three() {
             .all(|s| s.refined_distance.is_some())
     );
     println!("{} of {} families refined", refined.len(), families.len());
+}
+
+/// The ranking that fits only the best family (the browser's worker shows it first) has the
+/// full ranking's order and scores, and each other family fitted afterwards equals the full
+/// ranking's fit, bit for bit.
+#[test]
+fn fitting_the_best_family_alone_gives_the_full_ranking() {
+    use proctex::retrieve::{Refinement, Suggester};
+    let db = Db::shipped();
+    let opts = Options::default();
+    for name in ["megaglest_stonebricks_256.png", "scorched3d_gravel_256.png"] {
+        let photo = common::dev_quadrant(name);
+        let mut s = Suggester::new(db, &photo, &opts, Refinement::default());
+        while s.step(db, &mut |_, _| true) {}
+        let full = s.suggestions(db);
+        let mut first = s.ranked(db, 1);
+        let fitted: Vec<&str> = first
+            .iter()
+            .filter(|r| r.preview.is_some())
+            .map(|r| r.name)
+            .collect();
+        assert_eq!(fitted.len(), 2, "{name}: {fitted:?}");
+        assert!(fitted.contains(&"noise"), "{name}: {fitted:?}");
+        for row in &mut first {
+            s.fit(db, row);
+        }
+        assert!(first == full, "{name}");
+    }
 }

@@ -1,5 +1,6 @@
 // The automatic model choice in the app: after each analysis the worker retrieves and
-// refines every structured model family, the app lists them ranked with thumbnails and scores,
+// refines every structured model family, the app lists them ranked with thumbnails and scores
+// (the best family fitted with the list, the other rows' fits following it),
 // adopts the best, and a click adopts another.
 const { test } = require('@playwright/test');
 const { expect, openApp, state, waitFrames, grab, innerSquare, reveal, clickWidget, suggestionsFor } = require('./helpers');
@@ -33,6 +34,9 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   expect(['brick', 'planks', 'grid']).toContain(s.suggestions[0].name);
   expect(s.suggestions.map((r) => r.name)).toContain('noise');
   expect(s.suggestions.length).toBe(10);
+  // The list came with its best family fitted; every other row's fit (texture distance,
+  // thumbnail) followed it into the app.
+  expect(s.suggestions.every((r) => typeof r.distance === 'number')).toBe(true);
   expect(s.adopted).toBe(0);
   expect(s.error).toBeNull();
   expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[0].name);

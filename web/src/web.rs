@@ -132,6 +132,28 @@ pub fn suggestions_done(
     Ok(())
 }
 
+/// The worker fitted ranked row `index` after the list came (`suggestionsDone` fits only what
+/// decides the order): the row JSON with its texture distance, and its `THUMB_SIDE²` RGBA8
+/// thumbnail.
+#[wasm_bindgen(js_name = suggestionFitted)]
+pub fn suggestion_fitted(
+    index: usize,
+    row_json: String,
+    thumbnail: Vec<u8>,
+) -> Result<(), JsValue> {
+    let row: jobs::SuggestionRow = serde_json::from_str(&row_json).map_err(js_error)?;
+    let side = jobs::THUMB_SIDE as usize;
+    if thumbnail.len() != side * side * 4 {
+        return Err(JsValue::from_str("suggestion thumbnail: wrong size"));
+    }
+    send(Command::SuggestionFitted {
+        index,
+        row: Box::new(row),
+        thumbnail,
+    });
+    Ok(())
+}
+
 /// The worker fitted suggestion `index` (after the user clicked it): its report JSON.
 #[wasm_bindgen(js_name = suggestionAdopted)]
 pub fn suggestion_adopted(index: usize, report_json: String) -> Result<(), JsValue> {

@@ -68,6 +68,13 @@ pub enum Command {
     /// The photo just analysed gets its suggestions only when the user asks (the start-up
     /// sample: see `www/main.js`); the list of the previous photo goes.
     SuggestOnRequest,
+    /// A row of the current list fitted after the list came: its texture distance and
+    /// thumbnail (`THUMB_SIDE²` RGBA8).
+    SuggestionFitted {
+        index: usize,
+        row: Box<SuggestionRow>,
+        thumbnail: Vec<u8>,
+    },
     /// The ranked suggestions of the current photo (or crop).
     Suggestions {
         /// Rows, nearest first.
@@ -279,6 +286,11 @@ impl ProctexApp {
                     timed_out,
                     best,
                 } => self.suggestions(ctx, rows, thumbnails, (cancelled, timed_out), best),
+                Command::SuggestionFitted {
+                    index,
+                    row,
+                    thumbnail,
+                } => self.suggestion_fitted(index, *row, &thumbnail),
                 Command::Adopted { index, report } => {
                     self.suggest.adopting = None;
                     self.adopt(index, *report);

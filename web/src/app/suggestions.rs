@@ -71,6 +71,24 @@ impl ProctexApp {
         }
     }
 
+    /// Row `index` of the list shown was fitted after the list came: its texture distance
+    /// and thumbnail. (A late row of a list since replaced names another model, or none, and
+    /// is dropped.)
+    pub(super) fn suggestion_fitted(&mut self, index: usize, row: SuggestionRow, thumbnail: &[u8]) {
+        let Some(shown) = self.suggest.rows.get_mut(index) else {
+            return;
+        };
+        if shown.name != row.name || shown.score != row.score {
+            return;
+        }
+        *shown = row;
+        let side = THUMB_SIDE as usize;
+        let image = egui::ColorImage::from_rgba_unmultiplied([side, side], thumbnail);
+        if let Some(t) = self.suggest.thumbs.get_mut(index) {
+            t.set(image, egui::TextureOptions::LINEAR);
+        }
+    }
+
     /// Makes suggestion `index`'s fitted params current: one undoable step; "Reset to
     /// analysed" returns to them.
     pub(super) fn adopt(&mut self, index: usize, report: Report) {
@@ -167,9 +185,12 @@ impl ProctexApp {
             ui.spacing_mut().item_spacing = egui::vec2(4.0, 4.0);
             for i in 0..self.suggest.rows.len() {
                 let row = &self.suggest.rows[i];
+                let texture = row
+                    .distance
+                    .map_or("fitting…".into(), |d| format!("{d:.3}"));
                 let mut tip = format!(
-                    "{}: score {:.3} (lower is nearer)\ntexture distance {:.3}",
-                    row.name, row.score, row.distance
+                    "{}: score {:.3} (lower is nearer)\ntexture distance {texture}",
+                    row.name, row.score
                 );
                 if let Some(r) = row.retrieval {
                     tip += &format!("\nstructure distance: retrieval {r:.3}");
@@ -199,12 +220,17 @@ impl ProctexApp {
                 if let Some(f) = fill {
                     painter.rect_filled(rect, 3.0, f);
                 }
-                if let Some(t) = self.suggest.thumbs.get(i) {
-                    let img = egui::Rect::from_min_size(
-                        rect.min + egui::vec2(6.0, 3.0),
-                        egui::vec2(44.0, 44.0),
-                    );
-                    egui::Image::new(t).paint_at(ui, img);
+                let img = egui::Rect::from_min_size(
+                    rect.min + egui::vec2(6.0, 3.0),
+                    egui::vec2(44.0, 44.0),
+                );
+                match self.suggest.thumbs.get(i) {
+                    // Fitted after the list came (its thumbnail follows).
+                    _ if row.distance.is_none() => {
+                        egui::Spinner::new().paint_at(ui, img.shrink(12.0));
+                    }
+                    Some(t) => egui::Image::new(t).paint_at(ui, img),
+                    None => {}
                 }
                 let font = egui::FontId::proportional(10.0);
                 let name = row.name.replace('_', " ");

@@ -150,9 +150,41 @@ impl Suggestions {
         serde_json::to_string(&rows).map_err(js_error)
     }
 
-    /// The ranked candidates' thumbnails, `THUMB_SIDE²` RGBA8 each, concatenated.
+    /// The ranked candidates' thumbnails, `THUMB_SIDE²` RGBA8 each, concatenated (a row not
+    /// fitted yet is transparent).
     pub fn thumbnails(&self) -> Vec<u8> {
         self.job.thumbnails()
+    }
+
+    /// Fits the first ranked row not fitted yet; returns its index, or -1 when every row is
+    /// fitted (then `row` and `thumbnail` give what changed).
+    #[wasm_bindgen(js_name = fitNext)]
+    pub fn fit_next(&mut self) -> Result<i32, JsValue> {
+        Ok(self
+            .job
+            .fit_next(database()?)
+            .map_or(-1, |i| i32::try_from(i).unwrap_or(-1)))
+    }
+
+    /// Ranked rows not fitted yet (`fitNext` fits them).
+    pub fn unfitted(&self) -> usize {
+        self.job.unfitted()
+    }
+
+    /// Ranked row `i` as JSON (as `rank` gives every row).
+    pub fn row(&self, i: usize) -> Result<String, JsValue> {
+        if i >= self.job.rows() {
+            return Err(JsValue::from_str(&format!("no suggestion {i}")));
+        }
+        serde_json::to_string(&self.job.row(i)).map_err(js_error)
+    }
+
+    /// Ranked row `i`'s thumbnail, `THUMB_SIDE²` RGBA8.
+    pub fn thumbnail(&self, i: usize) -> Result<Vec<u8>, JsValue> {
+        if i >= self.job.rows() {
+            return Err(JsValue::from_str(&format!("no suggestion {i}")));
+        }
+        Ok(self.job.thumbnail(i))
     }
 
     /// The report JSON of ranked candidate `i` fitted at analysis size.

@@ -197,8 +197,9 @@ pub struct SuggestionRow {
     pub name: String,
     /// Ranking key (lower is nearer; see `retrieve::Suggester::suggestions`).
     pub score: f32,
-    /// Texture distance of the fitted candidate to the photo.
-    pub distance: f32,
+    /// Texture distance of the fitted candidate to the photo (`None` until it is fitted: the
+    /// ranking fits what decides its order first, the other rows follow).
+    pub distance: Option<f32>,
     /// Structure distance after retrieval (patterns only).
     pub retrieval: Option<f32>,
     /// The same after refinement, when refined.
@@ -299,46 +300,74 @@ impl SuggestJob {
     }
 
     /// Ranks the candidates with the refinement done so far (the families not refined keep
-    /// their retrieved pattern).
+    /// their retrieved pattern). Only the noise model and the best family are fitted: they
+    /// decide the order (`retrieve::Suggester::ranked`); [`SuggestJob::fit_next`] fits the
+    /// other rows afterwards, one per call.
     pub fn rank(&mut self, db: &Db) -> Vec<SuggestionRow> {
-        self.ranked = self.suggester.suggestions(db);
-        self.ranked
-            .iter()
-            .map(|s| SuggestionRow {
-                name: s.name.to_string(),
-                score: s.score,
-                distance: s.distance,
-                retrieval: s.pattern.as_ref().map(|_| s.retrieval_distance),
-                refined: s.refined_distance,
-                skipped: s.skipped,
-            })
-            .collect()
+        self.ranked = self.suggester.ranked(db, 1);
+        (0..self.ranked.len()).map(|i| self.row(i)).collect()
+    }
+
+    /// Ranked rows (0 before [`SuggestJob::rank`]).
+    pub fn rows(&self) -> usize {
+        self.ranked.len()
+    }
+
+    /// Ranked rows not fitted yet ([`SuggestJob::fit_next`] fits them).
+    pub fn unfitted(&self) -> usize {
+        self.ranked.iter().filter(|s| s.preview.is_none()).count()
+    }
+
+    /// Ranked row `i` as the UI shows it.
+    pub fn row(&self, i: usize) -> SuggestionRow {
+        let s = &self.ranked[i];
+        SuggestionRow {
+            name: s.name.to_string(),
+            score: s.score,
+            distance: s.distance,
+            retrieval: s.pattern.as_ref().map(|_| s.retrieval_distance),
+            refined: s.refined_distance,
+            skipped: s.skipped,
+        }
+    }
+
+    /// Fits the first ranked row not fitted yet (as the ranking would have fitted it) and
+    /// returns its index; `None` when every row is fitted.
+    pub fn fit_next(&mut self, db: &Db) -> Option<usize> {
+        let i = self.ranked.iter().position(|s| s.preview.is_none())?;
+        self.suggester.fit(db, &mut self.ranked[i]);
+        Some(i)
     }
 
     /// Thumbnails of the ranked candidates ([`THUMB_SIDE`]², RGBA8, concatenated in rank
-    /// order): each fitted candidate rendered over the whole analysed photo.
+    /// order): each fitted candidate rendered over the whole analysed photo; a row not
+    /// fitted yet is transparent (alpha 0) until [`SuggestJob::fit_next`] fits it.
     pub fn thumbnails(&self) -> Vec<u8> {
+        (0..self.ranked.len())
+            .flat_map(|i| self.thumbnail(i))
+            .collect()
+    }
+
+    /// Ranked row `i`'s thumbnail ([`SuggestJob::thumbnails`]).
+    pub fn thumbnail(&self, i: usize) -> Vec<u8> {
         let side = THUMB_SIDE;
-        let mut out = Vec::with_capacity(self.ranked.len() * (side * side * 4) as usize);
-        for s in &self.ranked {
-            let p = &s.preview;
-            let extent = p
-                .source
-                .as_ref()
-                .map_or(256, |s| s.analysis_width.max(s.analysis_height));
-            let view = View {
-                origin: [0.0, 0.0],
-                pixel_size: p.transform.scale * extent as f32 / side as f32,
-                z: 0.0,
-            };
-            let img = render(p, side, side, &view);
-            out.extend(
-                img.to_rgb8()
-                    .chunks_exact(3)
-                    .flat_map(|c| [c[0], c[1], c[2], 255]),
-            );
-        }
-        out
+        let Some(p) = &self.ranked[i].preview else {
+            return vec![0; (side * side * 4) as usize];
+        };
+        let extent = p
+            .source
+            .as_ref()
+            .map_or(256, |s| s.analysis_width.max(s.analysis_height));
+        let view = View {
+            origin: [0.0, 0.0],
+            pixel_size: p.transform.scale * extent as f32 / side as f32,
+            z: 0.0,
+        };
+        render(p, side, side, &view)
+            .to_rgb8()
+            .chunks_exact(3)
+            .flat_map(|c| [c[0], c[1], c[2], 255])
+            .collect()
     }
 
     /// The report of ranked candidate `i` fitted to the photo at analysis size (what adopting
@@ -564,7 +593,27 @@ mod tests {
             );
         }
         let side = THUMB_SIDE as usize;
-        assert_eq!(job.thumbnails().len(), rows.len() * side * side * 4);
+        let thumbs = job.thumbnails();
+        assert_eq!(thumbs.len(), rows.len() * side * side * 4);
+        // The noise model and the best family are fitted at once, the others on request: then
+        // each row is the CLI's, and its thumbnail appears.
+        let fitted: Vec<bool> = rows.iter().map(|r| r.distance.is_some()).collect();
+        assert_eq!(fitted.iter().filter(|&&f| f).count(), 2, "{rows:?}");
+        let opaque = |t: &[u8]| t.chunks_exact(4).all(|px| px[3] == 255);
+        for (i, t) in thumbs.chunks_exact(side * side * 4).enumerate() {
+            assert_eq!(opaque(t), fitted[i], "row {i}");
+            assert!(fitted[i] || t.iter().all(|&b| b == 0), "row {i}");
+        }
+        let mut order = Vec::new();
+        while let Some(i) = job.fit_next(db) {
+            order.push(i);
+            assert!(opaque(&job.thumbnail(i)));
+        }
+        let expected: Vec<usize> = (0..rows.len()).filter(|&i| !fitted[i]).collect();
+        assert_eq!(order, expected);
+        for (i, d) in direct.iter().enumerate() {
+            assert_eq!(job.row(i).distance, d.distance, "row {i}");
+        }
         let i = rows.iter().position(|r| r.name != "noise").unwrap();
         let report = job.report(db, i).unwrap();
         report.params.validate().unwrap();

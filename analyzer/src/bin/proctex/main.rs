@@ -301,10 +301,10 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
         ranking += "candidates, nearest first (score: a pattern's structure distance + margin; \
                     the noise model's texture distance against the best pattern's):\n";
         for s in suggestions {
-            ranking += &format!(
-                "  {:<11} score {:.3}  texture {:.3}",
-                s.name, s.score, s.distance
-            );
+            let texture = s
+                .distance
+                .map_or("not fitted".into(), |d| format!("{d:.3}"));
+            ranking += &format!("  {:<11} score {:.3}  texture {texture}", s.name, s.score);
             if let Some((p, swapped)) = &s.pattern {
                 let refined = s
                     .refined_distance
