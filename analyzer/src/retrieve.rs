@@ -615,7 +615,15 @@ fn diverse_starts(pool: Vec<Match>, want: usize) -> Vec<Match> {
 /// The database's noise tile (refinement renders patterns as the database did).
 fn db_tile() -> &'static Tile {
     static TILE: std::sync::OnceLock<Tile> = std::sync::OnceLock::new();
-    TILE.get_or_init(|| Tile::new_2d(crate::db::DB_SEED))
+    // Not `get_or_init`: making a tile runs parallel work (`Tile::generate`), and a rayon
+    // thread that steals a job asking for this tile while it makes it would wait in
+    // `get_or_init` for itself: a deadlock (seen in the retrieval tests, which rank many photos
+    // at once). Two threads may both make it; the tile is the same and one is kept.
+    if let Some(tile) = TILE.get() {
+        return tile;
+    }
+    let _ = TILE.set(Tile::new_2d(crate::db::DB_SEED));
+    TILE.get().expect("the tile was set")
 }
 
 /// The descriptor distance between the top and bottom halves of the photo's structure map
