@@ -342,14 +342,7 @@ impl Db {
 
     /// The bytes of the database file.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut lo = vec![f32::INFINITY; LEN];
-        let mut hi = vec![f32::NEG_INFINITY; LEN];
-        for e in &self.entries {
-            for i in 0..LEN {
-                lo[i] = lo[i].min(e.descriptor.0[i]);
-                hi[i] = hi[i].max(e.descriptor.0[i]);
-            }
-        }
+        let (lo, hi) = self.bounds();
         let mut out = Vec::new();
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&(self.entries.len() as u32).to_le_bytes());
@@ -371,6 +364,20 @@ impl Db {
             }
         }
         out
+    }
+
+    /// Each descriptor value's least and greatest over the entries: the 8-bit levels' bounds
+    /// ([`level`]) that the file stores.
+    fn bounds(&self) -> (Vec<f32>, Vec<f32>) {
+        let mut lo = vec![f32::INFINITY; LEN];
+        let mut hi = vec![f32::NEG_INFINITY; LEN];
+        for e in &self.entries {
+            for i in 0..LEN {
+                lo[i] = lo[i].min(e.descriptor.0[i]);
+                hi[i] = hi[i].max(e.descriptor.0[i]);
+            }
+        }
+        (lo, hi)
     }
 
     /// Reads a database file.
@@ -487,9 +494,8 @@ mod tests {
         );
         if std::env::var("PROCTEX_TEST").as_deref() != Ok("full") {
             let stale = "analyzer/data/patterns.ptxdb is stale: run `proctex build-db -o analyzer/data/patterns.ptxdb`";
-            let f32_at = |at: usize| f32::from_le_bytes(SHIPPED[at..at + 4].try_into().unwrap());
-            let lo: Vec<f32> = (0..LEN).map(|i| f32_at(16 + 4 * i)).collect();
-            let hi: Vec<f32> = (0..LEN).map(|i| f32_at(16 + 4 * (LEN + i))).collect();
+            // The file's own bounds (its entries' extremes read back exactly: it round-trips).
+            let (lo, hi) = shipped.bounds();
             let tile = Tile::new_2d(DB_SEED);
             let mut first = 0;
             let mut jobs = Vec::new();

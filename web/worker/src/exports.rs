@@ -173,24 +173,29 @@ impl Suggestions {
 
     /// Ranked row `i` as JSON (as `rank` gives every row).
     pub fn row(&self, i: usize) -> Result<String, JsValue> {
-        if i >= self.job.rows() {
-            return Err(JsValue::from_str(&format!("no suggestion {i}")));
-        }
-        serde_json::to_string(&self.job.row(i)).map_err(js_error)
+        serde_json::to_string(&self.job.row(self.ranked_row(i)?)).map_err(js_error)
     }
 
     /// Ranked row `i`'s thumbnail, `THUMB_SIDE²` RGBA8.
     pub fn thumbnail(&self, i: usize) -> Result<Vec<u8>, JsValue> {
-        if i >= self.job.rows() {
-            return Err(JsValue::from_str(&format!("no suggestion {i}")));
-        }
-        Ok(self.job.thumbnail(i))
+        Ok(self.job.thumbnail(self.ranked_row(i)?))
     }
 
     /// The report JSON of ranked candidate `i` fitted at analysis size.
     pub fn report(&self, i: usize) -> Result<String, JsValue> {
         let r = self.job.report(database()?, i).map_err(js_error)?;
         serde_json::to_string(&r).map_err(js_error)
+    }
+}
+
+impl Suggestions {
+    /// `i` when it is a ranked row, else the error JS sees.
+    fn ranked_row(&self, i: usize) -> Result<usize, JsValue> {
+        if i < self.job.rows() {
+            Ok(i)
+        } else {
+            Err(JsValue::from_str(&format!("no suggestion {i}")))
+        }
     }
 }
 
