@@ -228,6 +228,20 @@ pub fn suggest_with(
     refinement: Refinement,
     progress: &(dyn Fn(usize, usize) -> bool + Sync),
 ) -> Vec<Suggestion> {
+    rank_with(db, photo, opts, refinement, usize::MAX, progress)
+}
+
+/// [`suggest_with`] with only the first `fitted` families fitted and rendered
+/// ([`Suggester::ranked`]: the same order and scores; the others have no `distance` or
+/// `preview`).
+pub fn rank_with(
+    db: &Db,
+    photo: &Photo,
+    opts: &Options,
+    refinement: Refinement,
+    fitted: usize,
+    progress: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Vec<Suggestion> {
     let mut s = Suggester::new(db, photo, opts, refinement);
     let total = s.evaluations();
     let done = std::sync::atomic::AtomicUsize::new(0);
@@ -263,7 +277,7 @@ pub fn suggest_with(
             s.set_refined(i, r);
         }
     }
-    s.suggestions(db)
+    s.ranked(db, fitted)
 }
 
 /// The automatic model choice in steps, for callers that must stay responsive (the browser's

@@ -4,9 +4,10 @@
 const { test } = require('@playwright/test');
 const { expect, openApp, state, waitFrames, grab, reveal, clickWidget, morphRockToGrass, suggestionsFor } = require('./helpers');
 
-// The app's 2D view of world [0, size)² at one world unit per pixel, and the shader the app
-// copies with its "Copy <lang>" button (`button`: the widget's prefix, export or morph).
-async function appViewAndSnippet(page, lang, size, button = 'export') {
+// The app's 2D view of world [0, size)² at one world unit per pixel, and the shaders the app
+// copies with its "Copy WGSL" and "Copy GLSL" buttons (`button`: the widgets' prefix, export or
+// morph). Both languages from one app state: the host pages then render each.
+async function appViewAndSnippets(page, size, button = 'export') {
   await page.evaluate(() => window.proctex.setView(0, 0, 1));
   await waitFrames(page, 3);
   const s = await state(page);
@@ -16,11 +17,15 @@ async function appViewAndSnippet(page, lang, size, button = 'export') {
   const frameX = Math.round(vx), frameY = Math.round(vy);
   const px = Math.ceil(vx) + 8, py = Math.ceil(vy) + 8;
   const app = await grab(page, [px, py, size, size]);
-  await clickWidget(page, `${button}.copy_${lang}`);
-  const src = await page.evaluate(() => window.proctex.lastCopied);
-  expect(src, 'the Copy button put a shader on the clipboard').toBeTruthy();
-  expect((await state(page)).error).toBeFalsy();
-  return { app, src, offset: [px - frameX, py - frameY] };
+  const srcs = {};
+  for (const [lang] of HOSTS) {
+    await page.evaluate(() => { window.proctex.lastCopied = null; });
+    await clickWidget(page, `${button}.copy_${lang}`);
+    srcs[lang] = await page.evaluate(() => window.proctex.lastCopied);
+    expect(srcs[lang], `the Copy ${lang.toUpperCase()} button put a shader on the clipboard`).toBeTruthy();
+    expect((await state(page)).error).toBeFalsy();
+  }
+  return { app, srcs, offset: [px - frameX, py - frameY] };
 }
 
 // The host page's render of `src` at t. On the page already (the same shader at another t), the
@@ -58,42 +63,45 @@ function expectSame(what, app, host) {
 
 const HOSTS = [['wgsl', 'host-wgsl.html'], ['glsl', 'host-glsl.html']];
 
-for (const [lang, hostPage] of HOSTS) {
-  test(`the exported ${lang.toUpperCase()} renders the app's view in the bare host page`, async ({ page }) => {
-    const size = 192;
-    await openApp(page);
-    const { app, src, offset } = await appViewAndSnippet(page, lang, size);
-    expectSame(lang, app, await hostImage(page, hostPage, src, size, offset));
-  });
-}
+// Each test copies both languages from one app state and renders each in its bare host page:
+// the app's setup (analyses, suggestions, morph keys) is the slow part, once for both.
+test('the exported WGSL and GLSL render the app\'s view in the bare host pages', async ({ page }) => {
+  const size = 192;
+  await openApp(page);
+  const { app, srcs, offset } = await appViewAndSnippets(page, size);
+  for (const [lang, hostPage] of HOSTS) {
+    expectSame(lang, app, await hostImage(page, hostPage, srcs[lang], size, offset));
+  }
+});
 
-for (const [lang, hostPage] of HOSTS) {
-  test(`a structured model's exported ${lang.toUpperCase()} renders the app's view in the bare host page`, async ({ page }) => {
-    const size = 192;
-    await openApp(page);
-    // The brick sample's best suggestion is a structured model, adopted by default.
-    const s = await suggestionsFor(page, 'skimage_brick_512.png');
-    expect(s.adopted).toBe(0);
-    expect(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model.kind).toBe('structured');
-    const { app, src, offset } = await appViewAndSnippet(page, lang, size);
-    expectSame(`structured ${lang}`, app, await hostImage(page, hostPage, src, size, offset));
-  });
-}
+test('a structured model\'s exported WGSL and GLSL render the app\'s view in the bare host pages', async ({ page }) => {
+  const size = 192;
+  await openApp(page);
+  // The brick sample's best suggestion is a structured model, adopted by default.
+  const s = await suggestionsFor(page, 'skimage_brick_512.png');
+  expect(s.adopted).toBe(0);
+  expect(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model.kind).toBe('structured');
+  const { app, srcs, offset } = await appViewAndSnippets(page, size);
+  for (const [lang, hostPage] of HOSTS) {
+    expectSame(`structured ${lang}`, app, await hostImage(page, hostPage, srcs[lang], size, offset));
+  }
+});
 
-for (const [lang, hostPage] of HOSTS) {
-  test(`a solid texture's exported ${lang.toUpperCase()} renders the app's plane view (z = 0)`, async ({ page }) => {
-    const size = 128;
-    await openApp(page);
-    const p = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
-    p.solid = true;
-    await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(p));
-    await page.evaluate(() => window.proctex.setViewMode('plane'));
-    await waitFrames(page, 3);
-    const { app, src, offset } = await appViewAndSnippet(page, lang, size);
-    expect(src).toContain(lang === 'wgsl' ? 'fn proctex3(' : 'vec3 proctex3(');
-    expectSame(`solid ${lang}`, app, await hostImage(page, hostPage, src, size, offset));
-  });
-}
+test('a solid texture\'s exported WGSL and GLSL render the app\'s plane view (z = 0)', async ({ page }) => {
+  const size = 128;
+  await openApp(page);
+  const p = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  p.solid = true;
+  await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(p));
+  await page.evaluate(() => window.proctex.setViewMode('plane'));
+  await waitFrames(page, 3);
+  const { app, srcs, offset } = await appViewAndSnippets(page, size);
+  expect(srcs.wgsl).toContain('fn proctex3(');
+  expect(srcs.glsl).toContain('vec3 proctex3(');
+  for (const [lang, hostPage] of HOSTS) {
+    expectSame(`solid ${lang}`, app, await hostImage(page, hostPage, srcs[lang], size, offset));
+  }
+});
 
 // Two presets ticked for a morph (rock and grass; or brick, a structured model, and grass),
 // t dragged towards the middle with the mouse.
@@ -117,26 +125,30 @@ async function morphHalfway(page, structured = false) {
   return t;
 }
 
-for (const [lang, hostPage, structured] of [...HOSTS.map(([l, h]) => [l, h, false]), ...HOSTS.map(([l, h]) => [l, h, true])]) {
+for (const structured of [false, true]) {
   const what = structured ? 'a structured model to the noise model' : 'two noise models';
-  test(`the exported ${lang.toUpperCase()} morph of ${what} renders the app's morph at the slider's t`, async ({ page }) => {
-    // Two analyses with their suggestions, then the host page compiles and runs a shader that
-    // rebuilds the params per pixel: 1.6–2.6 min on the 2-core SwiftShader machine, too close
-    // to the default 3 min (both timed out once while other jobs shared the machine).
-    test.setTimeout(360_000);
+  test(`the exported WGSL and GLSL morphs of ${what} render the app's morph at the slider's t`, async ({ page }) => {
+    // Two analyses with their suggestions, then each host page compiles and runs a shader that
+    // rebuilds the params per pixel: 1.6–2.6 min for one language on the 2-core SwiftShader
+    // machine when each had a test of its own (both timed out once at 3 min while other jobs
+    // shared the machine).
+    test.setTimeout(480_000);
     const size = 128;
     const t = await morphHalfway(page, structured);
-    const { app, src, offset } = await appViewAndSnippet(page, lang, size, 'morph');
-    expect(src).toContain('proctex_t');
-    if (structured) {
-      // The brick key's pattern fades out through the first half of the segment.
-      expect(t).toBeLessThan(0.5);
-      expect(src).toContain('MorphStructure(');
+    const { app, srcs, offset } = await appViewAndSnippets(page, size, 'morph');
+    for (const [lang, hostPage] of HOSTS) {
+      const src = srcs[lang];
+      expect(src).toContain('proctex_t');
+      if (structured) {
+        // The brick key's pattern fades out through the first half of the segment.
+        expect(t).toBeLessThan(0.5);
+        expect(src).toContain('MorphStructure(');
+      }
+      expectSame(`morph ${lang} at t = ${t.toFixed(3)}`, app, await hostImage(page, hostPage, src, size, offset, t));
+      // And t = 0 in the host is the first preset, not the blend.
+      const start = await hostImage(page, hostPage, src, size, offset, 0);
+      expect(compare(app, start).mae).toBeGreaterThan(2);
     }
-    expectSame(`morph ${lang} at t = ${t.toFixed(3)}`, app, await hostImage(page, hostPage, src, size, offset, t));
-    // And t = 0 in the host is the first preset, not the blend.
-    const start = await hostImage(page, hostPage, src, size, offset, 0);
-    expect(compare(app, start).mae).toBeGreaterThan(2);
   });
 }
 
