@@ -48,7 +48,8 @@ worker.onmessage = (e) => {
     else {
       lastSuggestions = {
         rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled, timedOut: m.timedOut,
-        helpers: m.helpers, helped: m.helped, count: (lastSuggestions?.count ?? 0) + 1,
+        helpers: m.helpers, helped: m.helped, fitTasks: m.fitTasks, fitHelped: m.fitHelped,
+        count: (lastSuggestions?.count ?? 0) + 1,
         id: m.id, fittedMs: null,
       };
       wasm.suggestionsDone(m.rows, m.thumbs, m.cancelled, m.timedOut, m.best ?? undefined);

@@ -1,8 +1,9 @@
 // A helper of the analysis worker (worker.js starts up to three): it refines model families
-// of the current suggestion job in parallel with the analysis worker, one family per message.
-// It loads the same wasm and pattern database, rebuilds the job's retrieval from the job's
-// prepared photo and seed (`Refiner`), and returns each family's result as JSON, which the
-// analysis worker stores with `Suggestions.setRefined`: the same numbers as refining there.
+// of the current suggestion job in parallel with the analysis worker, one family per message,
+// then runs tasks of the adopted model's final fit the same way. It loads the same wasm and
+// pattern database, rebuilds the job's retrieval from the job's prepared photo and seed
+// (`Refiner`), and returns each result as JSON, which the analysis worker stores with
+// `Suggestions.setRefined` or `Suggestions.setFitTask`: the same numbers as running it there.
 import init, * as wasm from './pkg/proctex_worker.js';
 
 const ready = init().then(async () => {
@@ -24,14 +25,30 @@ onmessage = async (e) => {
       current = { token: m.token, refiner: new wasm.Refiner(m.rgb, m.width, m.height, m.seed) };
       return;
     }
-    if (m.type === 'refine') {
+    if (m.type === 'fitPrepare') {
+      // Errors surface with the first task of this fit, which prepares it again.
+      if (current && current.token === m.token) {
+        try { current.refiner.fitPrepare(m.pattern); } catch { /* see above */ }
+      }
+      return;
+    }
+    if (m.type === 'refine' || m.type === 'fit') {
       if (!current || current.token !== m.token) throw new Error('no photo for this job');
-      const json = current.refiner.refine(m.family);
-      postMessage({ token: m.token, family: m.family, json });
+      const json = m.type === 'refine'
+        ? current.refiner.refine(m.task.family)
+        : current.refiner.fitTask(m.pattern, m.task.index, m.chosen);
+      postMessage({ token: m.token, task: m.task, json });
     }
   } catch (err) {
-    if (m.type === 'refine') {
-      postMessage({ token: m.token, family: m.family, error: String(err.message ?? err) });
+    if (m.type === 'fitPrepare') {
+      // Errors surface with the first task of this fit, which prepares it again.
+      if (current && current.token === m.token) {
+        try { current.refiner.fitPrepare(m.pattern); } catch { /* see above */ }
+      }
+      return;
+    }
+    if (m.type === 'refine' || m.type === 'fit') {
+      postMessage({ token: m.token, task: m.task, error: String(err.message ?? err) });
     }
   }
 };

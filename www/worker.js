@@ -70,13 +70,17 @@ const dbReady = ready.then(async () => {
 dbReady.catch(() => {}); // reported per photo, below
 
 // The running suggestion: { job, id, token, cancelled, t0, todo, inflight, waiting, finished,
-// helped, helpers }.
+// helped, helpers, fit }.
 // Refinement runs one model family per queued step, so a new photo, a crop, the plots'
 // statistics or Cancel get in between steps; helper workers (refiner.js) refine other families
 // at the same time. The families come in rounds (`pending()`: the first three by retrieval,
 // then those that could still reach the top three); `todo`: families of the round nobody has
 // started (this worker takes from the front, the helpers from the back); `inflight`: families
 // at the helpers; `waiting`: this worker has nothing left to refine and waits for them.
+// Tasks are `{ kind: 'refine', family }` or, once the list is ranked and a model family is its
+// best (`finished`), `{ kind: 'fit', index }`: the final fit of the adopted model (step 6 of the
+// structured fit) in rounds of tasks (`fitPending()`), shared the same way; `fit`: its state
+// ({ rows, thumbs, tasks, helped }) until its report goes out with the list.
 let suggestion = null;
 let tokens = 0;
 // The refinement's time budget (milliseconds from the end of retrieval; 0: none), set by the
@@ -97,6 +101,7 @@ function armBudget(s) {
 // Stops the refinement of `s` before its next step (Cancel, or the time budget when
 // `timedOut`); if only helpers were refining, ranks now, without their families.
 function stopRefinement(s, timedOut) {
+  if (s.finished) return; // ranked already (its final fit, if any, is not stopped)
   s.cancelled = true;
   s.timedOut = timedOut;
   if (s.waiting) {
@@ -106,7 +111,7 @@ function stopRefinement(s, timedOut) {
 }
 
 // ---- Helper workers: as many as the machine has cores beyond this worker's and the page's
-// (at most 3). A helper that fails is retired and its family goes back to `todo`.
+// (at most 3). A helper that fails is retired and its task goes back to `todo`.
 const HELPERS = Math.max(0, Math.min(3, (navigator.hardwareConcurrency || 1) - 1));
 let helpers = null;
 let helperLimit = HELPERS; // e2e/bench: setHelpers
@@ -126,7 +131,7 @@ function helperPool() {
       h.broken = true;
       const job = h.job;
       h.job = null;
-      if (job) helperDone(h, { token: job.token, family: job.family, error: 'helper failed' });
+      if (job) helperDone(h, { token: job.token, task: job.task, error: 'helper failed' });
     };
     helpers.push(h);
   }
@@ -138,17 +143,21 @@ function helperDone(h, m) {
   const s = suggestion;
   if (!s) return;
   if (m.token !== s.token) {
-    dispatch(s, h); // a superseded job's family is dropped; the helper joins the current job
+    dispatch(s, h); // a superseded job's task is dropped; the helper joins the current job
     return;
   }
   s.inflight--;
   if (m.error) {
     h.broken = true;
-    s.todo.unshift(m.family); // this worker refines it instead
-  } else if (!s.finished) {
-    s.job.setRefined(m.family, m.json);
+    // This worker runs it instead (a refinement that failed after the ranking is dropped).
+    if (m.task.kind === (s.fit ? 'fit' : 'refine') && !(s.finished && !s.fit)) s.todo.unshift(m.task);
+  } else if (m.task.kind === 'refine' && !s.finished) {
+    s.job.setRefined(m.task.family, m.json);
     s.helped++;
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
+  } else if (m.task.kind === 'fit' && s.fit) {
+    s.job.setFitTask(m.task.index, m.json);
+    s.fit.helped++;
   }
   dispatch(s, h);
   // This worker waits only while helpers hold families: wake it when the last one is back or a
@@ -159,14 +168,36 @@ function helperDone(h, m) {
   }
 }
 
-// Gives helper `h` the next family of `s`, when it is idle and holds the job's photo.
+// Gives helper `h` the next task of `s`, when it is idle and holds the job's photo.
 function dispatch(s, h) {
-  if (h.broken || h.job || h.token !== s.token) return;
-  if (s.finished || s.cancelled || s.todo.length === 0) return;
-  const family = s.todo.pop();
-  h.job = { token: s.token, family };
+  if (h.broken || h.job || h.token !== s.token || s.todo.length === 0) return;
+  if (s.fit ? s.fit.done : s.finished || s.cancelled) return;
+  const task = s.todo.pop();
+  h.job = { token: s.token, task };
   s.inflight++;
-  h.worker.postMessage({ type: 'refine', token: s.token, family });
+  if (task.kind === 'refine') {
+    h.worker.postMessage({ type: 'refine', token: s.token, task });
+  } else {
+    h.worker.postMessage({
+      type: 'fit', token: s.token, task, pattern: s.fit.pattern, chosen: s.job.fitChosen(),
+    });
+  }
+}
+
+// Sends the job's prepared photo to the helpers that do not hold it yet; they then take tasks.
+function engageHelpers(s) {
+  const pool = helperPool().filter((h) => !h.broken).slice(0, helperLimit);
+  if (pool.length === 0) return;
+  s.helpers = Math.max(s.helpers, pool.length);
+  let rgb = null, size = null;
+  for (const helper of pool) {
+    if (helper.token !== s.token) {
+      if (!rgb) { size = s.job.preparedSize(); rgb = s.job.preparedPixels(); }
+      helper.worker.postMessage({ type: 'photo', token: s.token, rgb, width: size[0], height: size[1], seed: s.seed });
+      helper.token = s.token;
+    }
+    dispatch(s, helper);
+  }
 }
 
 // Stops and frees the running suggestion job, if any (helpers' replies for it are ignored).
@@ -198,25 +229,19 @@ async function startSuggestions(id, crop, seed) {
     return;
   }
   const s = {
-    job, id, token: ++tokens, cancelled: false, timedOut: false, t0: performance.now(),
-    todo: Array.from(job.pending()), inflight: 0, finished: false,
-    waiting: false, helped: 0, helpers: 0,
+    job, id, seed, token: ++tokens, cancelled: false, timedOut: false, t0: performance.now(),
+    todo: refineTasks(job), inflight: 0, finished: false,
+    waiting: false, helped: 0, helpers: 0, fit: null,
   };
   suggestion = s;
   armBudget(s);
   postMessage({ type: 'suggestProgress', id, done: 0, total: job.steps() });
-  const pool = helperPool().filter((h) => !h.broken).slice(0, helperLimit);
-  if (pool.length > 0 && s.todo.length > 1) {
-    s.helpers = pool.length;
-    const [w, h] = job.preparedSize();
-    const rgb = job.preparedPixels();
-    for (const helper of pool) {
-      helper.worker.postMessage({ type: 'photo', token: s.token, rgb, width: w, height: h, seed });
-      helper.token = s.token;
-      dispatch(s, helper);
-    }
-  }
+  if (s.todo.length > 1) engageHelpers(s);
   scheduleStep(s);
+}
+
+function refineTasks(job) {
+  return Array.from(job.pending(), (family) => ({ kind: 'refine', family }));
 }
 
 function scheduleStep(s) {
@@ -231,15 +256,20 @@ function scheduleStep(s) {
 // The next round of families, once every family of the current one is back; idle helpers take
 // their share at once.
 function nextRound(s) {
-  s.todo = Array.from(s.job.pending());
+  s.todo = refineTasks(s.job);
   if (s.helpers > 0) for (const h of helperPool()) dispatch(s, h);
 }
 
 function suggestStep(s) {
-  if (suggestion !== s || s.finished) return; // superseded (and freed), or already ranked
+  if (suggestion !== s) return; // superseded (and freed)
+  if (s.fit) {
+    fitStep(s);
+    return;
+  }
+  if (s.finished) return; // already ranked
   if (!s.cancelled && s.todo.length === 0 && s.inflight === 0) nextRound(s);
   if (!s.cancelled && s.todo.length > 0) {
-    const family = s.todo.shift();
+    const family = s.todo.shift().family;
     s.job.setRefined(family, s.job.refine(family));
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
     scheduleStep(s);
@@ -254,11 +284,51 @@ function suggestStep(s) {
   clearTimeout(s.budgetTimer);
   const rows = s.job.rank();
   const thumbs = s.job.thumbnails();
-  const first = JSON.parse(rows)[0];
-  const best = first && first.name !== 'noise' ? s.job.report(0) : null;
+  // The best row's final fit, in tasks shared with the helpers (its report goes with the list);
+  // the helpers build their own fit of the pattern while this worker builds the job's.
+  const pattern = s.job.rowPattern(0);
+  if (pattern) {
+    s.fit = { rows, thumbs, pattern, tasks: 0, helped: 0, done: false };
+    s.todo = [];
+    engageHelpers(s);
+    for (const h of helperPool()) {
+      if (!h.broken && h.token === s.token) h.worker.postMessage({ type: 'fitPrepare', token: s.token, pattern });
+    }
+    s.job.beginFit(0);
+    fitStep(s);
+    return;
+  }
+  postSuggestions(s, rows, thumbs, null);
+}
+
+// One task of the final fit per queued step (a new photo supersedes it between steps; Cancel
+// does not stop it: the list is ranked by then); the report and the list go out at the end.
+function fitStep(s) {
+  if (s.fit.done) return;
+  if (s.todo.length === 0 && s.inflight === 0) {
+    s.todo = Array.from(s.job.fitPending(), (index) => ({ kind: 'fit', index }));
+    s.fit.tasks += s.todo.length;
+    for (const h of helperPool()) dispatch(s, h);
+  }
+  if (s.todo.length > 0) {
+    const index = s.todo.shift().index;
+    s.job.setFitTask(index, s.job.fitTask(index));
+    scheduleStep(s);
+    return;
+  }
+  if (s.inflight > 0) {
+    s.waiting = true; // a helper's reply wakes it up
+    return;
+  }
+  s.fit.done = true;
+  postSuggestions(s, s.fit.rows, s.fit.thumbs, s.job.fitReport());
+}
+
+function postSuggestions(s, rows, thumbs, best) {
   postMessage({
     type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled, timedOut: s.timedOut,
     ms: performance.now() - s.t0, helpers: s.helpers, helped: s.helped,
+    fitTasks: s.fit?.tasks ?? 0, fitHelped: s.fit?.helped ?? 0,
   }, [thumbs.buffer]);
   fitRows(s);
 }

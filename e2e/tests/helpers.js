@@ -198,7 +198,7 @@ async function suggestionsFor(page, sample) {
   console.log(`${sample}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
     `(retrieval to ranking ${t.ms.toFixed(0)} ms, every row fitted ` +
     `${t.fittedMs === null ? 'with it' : `${t.fittedMs.toFixed(0)} ms`}; ${t.helped} of ${s.suggestions.length - 1} ` +
-    `families refined by ${t.helpers} helper workers)`);
+    `families refined and ${t.fitHelped} of ${t.fitTasks} final-fit tasks run by ${t.helpers} helper workers)`);
   return s;
 }
 
@@ -226,7 +226,7 @@ async function dropFile(page, filePath, kind) {
 
 module.exports = {
   expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats,
-  cliRender,
+  cliRender, CLI,
   innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, ROOT,
   dropFile,
 };

@@ -3,7 +3,9 @@
 // (the best family fitted with the list, the other rows' fits following it),
 // adopts the best, and a click adopts another.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, grab, innerSquare, reveal, clickWidget, suggestionsFor } = require('./helpers');
+const { execFileSync } = require('child_process');
+const path = require('path');
+const { expect, openApp, state, waitFrames, grab, innerSquare, reveal, clickWidget, suggestionsFor, CLI, ROOT } = require('./helpers');
 
 const patternOf = (json) => {
   const p = JSON.parse(json);
@@ -15,6 +17,18 @@ function meanDiff(a, b) {
   let diff = 0;
   for (let i = 0; i < a.data.length; i += 4) diff += Math.abs(a.data[i] - b.data[i]);
   return diff / (a.data.length / 4);
+}
+
+// `a` and `b` have the same structure and values within 1e-4 (relative, or absolute near 0).
+function expectClose(a, b, where) {
+  if (typeof a === 'number' && typeof b === 'number') {
+    expect(Math.abs(a - b), `${where}: ${a} vs ${b}`).toBeLessThanOrEqual(1e-4 * Math.max(1, Math.abs(b)));
+  } else if (a && b && typeof a === 'object' && typeof b === 'object') {
+    expect(Object.keys(a).sort(), where).toEqual(Object.keys(b).sort());
+    for (const k of Object.keys(a)) expectClose(a[k], b[k], `${where}.${k}`);
+  } else {
+    expect(a, where).toEqual(b);
+  }
 }
 
 async function adopt(page, i) {
@@ -40,6 +54,15 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   expect(s.adopted).toBe(0);
   expect(s.error).toBeNull();
   expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[0].name);
+  // The adopted model's final fit ran in tasks, shared with the helper workers when there are
+  // any, and is the CLI's analysis of the same photo (up to the last digits: wasm's maths
+  // functions are not the native ones).
+  const t = await page.evaluate(() => window.proctex.lastSuggestions());
+  expect(t.fitTasks).toBeGreaterThan(1);
+  if (t.helpers > 0) expect(t.fitHelped).toBeGreaterThan(0);
+  const cli = JSON.parse(execFileSync(CLI, ['analyze', path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png'),
+    '--json'], { stdio: ['ignore', 'pipe', 'ignore'] }).toString());
+  expectClose(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model, cli.model, 'model');
 
   const square = innerSquare(s.widgets.texture, 192);
   const first = await grab(page, square);

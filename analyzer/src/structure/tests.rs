@@ -1,5 +1,6 @@
 //! Tests of the structured fit (`structure`).
 
+use super::tone::{fit_tone_rendered, with_tone_applied};
 use super::*;
 use crate::params::pattern_shell;
 use crate::render::{View, render};

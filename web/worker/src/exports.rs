@@ -181,6 +181,59 @@ impl Suggestions {
         Ok(self.job.thumbnail(self.ranked_row(i)?))
     }
 
+    /// Ranked row `i`'s pattern as JSON for a helper's `Refiner.fitPrepare` ("" for the noise
+    /// model).
+    #[wasm_bindgen(js_name = rowPattern)]
+    pub fn row_pattern(&self, i: usize) -> String {
+        self.job.row_pattern(i).unwrap_or_default()
+    }
+
+    /// Begins the final fit of ranked row `i` in tasks (`fitPending`, `fitTask` here or a
+    /// helper's `Refiner.fitTask`, `setFitTask`, then `fitReport`: `report(i)`'s JSON); false
+    /// for the noise model (no tasks: use `report`).
+    #[wasm_bindgen(js_name = beginFit)]
+    pub fn begin_fit(&mut self, i: usize) -> Result<bool, JsValue> {
+        self.job.begin_fit(database()?, i).map_err(js_error)
+    }
+
+    /// The final fit's tasks of its current round not stored yet (empty: done). Run them
+    /// (here or in helpers), store them, then ask again.
+    #[wasm_bindgen(js_name = fitPending)]
+    pub fn fit_pending(&mut self) -> Vec<u32> {
+        self.job
+            .fit_pending()
+            .into_iter()
+            .map(|t| t as u32)
+            .collect()
+    }
+
+    /// The first round's chosen amplitude (valid once `fitPending` lists the second round).
+    #[wasm_bindgen(js_name = fitChosen)]
+    pub fn fit_chosen(&self) -> usize {
+        self.job.fit_pattern().map_or(0, |(_, c)| c)
+    }
+
+    /// Runs final-fit task `t` here without storing it; its result as JSON for `setFitTask`.
+    #[wasm_bindgen(js_name = fitTask)]
+    pub fn fit_task(&self, t: usize) -> Result<String, JsValue> {
+        self.job
+            .fit_task(database()?, t)
+            .ok_or_else(|| JsValue::from_str("no final fit begun"))
+    }
+
+    /// Stores final-fit task `t`'s result (JSON from `fitTask` or a helper's `Refiner.fitTask`).
+    #[wasm_bindgen(js_name = setFitTask)]
+    pub fn set_fit_task(&mut self, t: usize, json: &str) -> Result<(), JsValue> {
+        self.job.set_fit_task(t, json).map_err(js_error)
+    }
+
+    /// The report JSON of the final fit, every task stored.
+    #[wasm_bindgen(js_name = fitReport)]
+    pub fn fit_report(&self) -> Result<String, JsValue> {
+        let r = self.job.fit_report().map_err(js_error)?;
+        serde_json::to_string(&r).map_err(js_error)
+    }
+
     /// The report JSON of ranked candidate `i` fitted at analysis size.
     pub fn report(&self, i: usize) -> Result<String, JsValue> {
         let r = self.job.report(database()?, i).map_err(js_error)?;
@@ -362,6 +415,24 @@ impl Refiner {
     /// Family `i`'s refinement as JSON (for `Suggestions.setRefined`).
     pub fn refine(&self, i: usize) -> Result<String, JsValue> {
         Ok(self.inner.refine(database()?, i))
+    }
+
+    /// Builds the final fit of `pattern` (`Suggestions.rowPattern`) ahead of its tasks, while
+    /// the analysis worker builds its own.
+    #[wasm_bindgen(js_name = fitPrepare)]
+    pub fn fit_prepare(&mut self, pattern: &str) -> Result<(), JsValue> {
+        self.inner
+            .fit_prepare(database()?, pattern)
+            .map_err(js_error)
+    }
+
+    /// Final-fit task `t` of `pattern` (`Suggestions.rowPattern`) with the first round's
+    /// `chosen` amplitude (`Suggestions.fitChosen`), as JSON for `Suggestions.setFitTask`.
+    #[wasm_bindgen(js_name = fitTask)]
+    pub fn fit_task(&mut self, pattern: &str, t: usize, chosen: usize) -> Result<String, JsValue> {
+        self.inner
+            .fit_task(database()?, pattern, t, chosen)
+            .map_err(js_error)
     }
 }
 

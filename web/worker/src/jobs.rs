@@ -18,6 +18,8 @@ use proctex::params::Params;
 use proctex::render::{View, render};
 use proctex::retrieve::{Refinement, Suggester, Suggestion};
 use proctex::structure::fit_structured;
+
+use crate::final_fit_job::{FinalFitJob, FitHelper, pattern_json};
 use serde::{Deserialize, Serialize};
 
 /// How the page tells a user to go past the photo pixel limit.
@@ -223,6 +225,8 @@ pub struct SuggestJob {
     crop: Option<[u32; 4]>,
     suggester: Suggester,
     ranked: Vec<Suggestion>,
+    /// The final fit of a ranked row in tasks ([`SuggestJob::begin_fit`]).
+    final_fit: Option<FinalFitJob>,
 }
 
 impl std::fmt::Debug for SuggestJob {
@@ -260,6 +264,7 @@ impl SuggestJob {
             crop,
             suggester,
             ranked: Vec::new(),
+            final_fit: None,
         })
     }
 
@@ -370,17 +375,84 @@ impl SuggestJob {
             .collect()
     }
 
+    /// Begins the final fit of ranked row `i` in tasks, which this worker and its helpers share
+    /// ([`SuggestJob::fit_pending`], [`SuggestJob::fit_task`] here or [`FitHelper::run`] in a
+    /// helper, [`SuggestJob::set_fit_task`], then [`SuggestJob::fit_report`]: the same report as
+    /// [`SuggestJob::report`]). Returns `false` for the noise model (no tasks: its report is
+    /// [`SuggestJob::report`]'s).
+    pub fn begin_fit(&mut self, db: &Db, i: usize) -> proctex::error::Result<bool> {
+        let s = self.ranked.get(i).ok_or_else(|| {
+            proctex::error::Error::Option(format!("no suggestion {i} (rank the photo first)"))
+        })?;
+        self.final_fit = s.pattern.as_ref().map(|(pattern, swapped)| {
+            FinalFitJob::new(db, &self.prepared, &self.opts, pattern, *swapped)
+        });
+        Ok(self.final_fit.is_some())
+    }
+
+    /// Ranked row `i`'s pattern as the final fit's tasks name it (`None`: the noise model, or
+    /// no such row): what helpers prepare their own final fit from while
+    /// [`SuggestJob::begin_fit`] runs.
+    pub fn row_pattern(&self, i: usize) -> Option<String> {
+        let (pattern, swapped) = self.ranked.get(i)?.pattern.as_ref()?;
+        Some(pattern_json(pattern, *swapped))
+    }
+
+    /// The final fit's tasks of its current round not stored yet (empty: done, or none begun).
+    pub fn fit_pending(&mut self) -> Vec<usize> {
+        self.final_fit
+            .as_mut()
+            .map_or_else(Vec::new, FinalFitJob::pending)
+    }
+
+    /// The final fit's pattern as JSON and the first round's chosen amplitude: what a helper's
+    /// [`FitHelper::run`] takes with a task.
+    pub fn fit_pattern(&self) -> Option<(&str, usize)> {
+        let f = self.final_fit.as_ref()?;
+        Some((f.pattern_json(), f.chosen()))
+    }
+
+    /// Runs final-fit task `t` here without storing it: its result as JSON (for
+    /// [`SuggestJob::set_fit_task`]).
+    pub fn fit_task(&self, db: &Db, t: usize) -> Option<String> {
+        Some(self.final_fit.as_ref()?.run(db, t))
+    }
+
+    /// Stores final-fit task `t`'s result (JSON from here or a helper).
+    pub fn set_fit_task(&mut self, t: usize, json: &str) -> Result<(), serde_json::Error> {
+        match self.final_fit.as_mut() {
+            Some(f) => f.set(t, json),
+            None => Ok(()),
+        }
+    }
+
+    /// The report of the final fit begun by [`SuggestJob::begin_fit`], every task stored.
+    pub fn fit_report(&self) -> proctex::error::Result<Report> {
+        let f = self.final_fit.as_ref().ok_or_else(|| {
+            proctex::error::Error::Option("no final fit begun (begin_fit first)".into())
+        })?;
+        self.report_of(|_, _| f.finish())
+    }
+
     /// The report of ranked candidate `i` fitted to the photo at analysis size (what adopting
     /// it shows).
     pub fn report(&self, db: &Db, i: usize) -> proctex::error::Result<Report> {
         let s = self.ranked.get(i).ok_or_else(|| {
             proctex::error::Error::Option(format!("no suggestion {i} (rank the photo first)"))
         })?;
-        let analysis = analyze_photo_with(&self.photo, &self.opts, |p, o| match &s.pattern {
+        self.report_of(|p, o| match &s.pattern {
             // The pattern's scale is in texels of the photo the suggester saw, which is `p`.
             Some((pattern, swapped)) => fit_structured(db, p, pattern, o, *swapped),
             None => analyze_prepared(p, o),
-        })?;
+        })
+    }
+
+    /// The report of `analysis` run on the job's analysis-size photo.
+    fn report_of(
+        &self,
+        analysis: impl FnOnce(&Photo, &Options) -> proctex::analyze::Analysis,
+    ) -> proctex::error::Result<Report> {
+        let analysis = analyze_photo_with(&self.photo, &self.opts, analysis)?;
         report(
             &self.photo,
             &self.opts,
@@ -408,9 +480,10 @@ fn refined_json(s: &Suggester, db: &Db, i: usize) -> String {
 /// Refines families of a [`SuggestJob`] in another worker (the page's helper workers): built
 /// from the job's [`SuggestJob::prepared`] photo and seed, it retrieves exactly as the job did,
 /// so each family's refinement equals the job's own.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Refiner {
     suggester: Suggester,
+    fit: FitHelper,
 }
 
 impl Refiner {
@@ -440,12 +513,30 @@ impl Refiner {
         };
         Ok(Refiner {
             suggester: Suggester::new(db, &photo, &opts, Refinement::default()),
+            fit: FitHelper::new(photo, opts),
         })
     }
 
     /// Family `i`'s refinement as JSON (for [`SuggestJob::set_refined`]).
     pub fn refine(&self, db: &Db, i: usize) -> String {
         refined_json(&self.suggester, db, i)
+    }
+
+    /// Builds the final fit of `pattern_json` ([`SuggestJob::row_pattern`]) ahead of its tasks.
+    pub fn fit_prepare(&mut self, db: &Db, pattern_json: &str) -> Result<(), serde_json::Error> {
+        self.fit.prepare(db, pattern_json).map(|_| ())
+    }
+
+    /// Final-fit task `t` of the job's pattern ([`SuggestJob::fit_pattern`]) as JSON (for
+    /// [`SuggestJob::set_fit_task`]).
+    pub fn fit_task(
+        &mut self,
+        db: &Db,
+        pattern_json: &str,
+        t: usize,
+        chosen: usize,
+    ) -> Result<String, serde_json::Error> {
+        self.fit.run(db, pattern_json, t, chosen)
     }
 }
 
@@ -661,5 +752,56 @@ mod tests {
         }
         assert!(job.set_refined(0, "not json").is_err());
         assert!(Refiner::new(db, &px[1..], pw, ph, 1).is_err());
+    }
+
+    /// The adopted model's final fit in tasks, shared with a helper (`Refiner::fit_task`) and
+    /// stored round by round in any order, gives the report that fitting it in one piece
+    /// gives, bit for bit.
+    #[test]
+    fn the_final_fit_in_tasks_anywhere_equals_the_report() {
+        let (rgba, w, h) = sample();
+        let db = Db::shipped();
+        let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+        while job.step(db) {}
+        let rows = job.rank(db);
+        let i = rows.iter().position(|r| r.name != "noise").unwrap();
+        let whole = serde_json::to_string(&job.report(db, i).unwrap()).unwrap();
+        let (px, pw, ph) = job.prepared();
+        let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+        let pattern = job.row_pattern(i).unwrap();
+        helper.fit_prepare(db, &pattern).unwrap();
+        assert!(job.begin_fit(db, i).unwrap());
+        assert_eq!(job.fit_pattern().unwrap().0, pattern);
+        let mut tasks = 0;
+        loop {
+            let round = job.fit_pending();
+            if round.is_empty() {
+                break;
+            }
+            let (pattern, chosen) = job.fit_pattern().unwrap();
+            let pattern = pattern.to_string();
+            for &t in round.iter().rev() {
+                let json = if t % 2 == 0 {
+                    helper.fit_task(db, &pattern, t, chosen).unwrap()
+                } else {
+                    job.fit_task(db, t).unwrap()
+                };
+                job.set_fit_task(t, &json).unwrap();
+                tasks += 1;
+            }
+        }
+        assert!(tasks > 1, "{tasks} tasks");
+        let tasked = serde_json::to_string(&job.fit_report().unwrap()).unwrap();
+        assert_eq!(tasked, whole);
+        // The noise model has no tasks; bad rows and results are errors.
+        let noise = rows.iter().position(|r| r.name == "noise").unwrap();
+        assert!(job.row_pattern(noise).is_none());
+        assert!(!job.begin_fit(db, noise).unwrap());
+        assert!(job.fit_pending().is_empty());
+        assert!(job.fit_report().is_err());
+        assert!(job.begin_fit(db, rows.len()).is_err());
+        assert!(job.begin_fit(db, i).unwrap());
+        assert!(job.set_fit_task(0, "not json").is_err());
+        assert!(helper.fit_task(db, "not json", 0, 0).is_err());
     }
 }

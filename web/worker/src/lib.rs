@@ -7,6 +7,7 @@
 //! JavaScript. The UI's crate uses `jobs` for the message types it reads (reports, statistics,
 //! suggestion rows) and for the CPU preview of presets, with the exports off.
 
+pub mod final_fit_job;
 pub mod jobs;
 pub mod pyramid_job;
 

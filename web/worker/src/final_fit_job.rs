@@ -1,0 +1,196 @@
+//! The adopted model's final fit (step 6 of `proctex::structure::fit_structured`) in tasks,
+//! shared by the analysis worker and its helper workers: the helpers sit idle once the
+//! refinement is done, and step 6 is the largest piece of the worker's path to its answer
+//! after it (about 2 s natively on one thread for the brick sample, twice that in wasm).
+
+use proctex::analyze::{Analysis, Options};
+use proctex::db::Db;
+use proctex::input::Photo;
+use proctex::params::Params;
+use proctex::pattern::Pattern;
+use proctex::structure::{FinalFit, Scored};
+use serde::{Deserialize, Serialize};
+
+/// Step 6 of one pattern on one photo, task by task: tasks `0..A` are the first round (each
+/// residual amplitude of the refined pattern), tasks `A..A+V` the second (each rougher variant
+/// at the amplitude the first round chose). A task's result is the same wherever it ran
+/// ([`run_task`] on a [`FinalFit`] built from the same photo, options and pattern), so each is
+/// stored as it comes back, in any order.
+#[derive(Debug)]
+pub struct FinalFitJob {
+    fit: FinalFit,
+    /// The pattern and its tone swap as JSON: what a helper builds its own [`FinalFit`] from.
+    pattern_json: String,
+    first: Vec<Option<Scored>>,
+    chosen: Option<usize>,
+    rest: Vec<Option<Scored>>,
+}
+
+impl FinalFitJob {
+    /// Fits `pattern` (its scale in texels of `photo`, the analysis-size photo) up to its
+    /// tasks.
+    pub fn new(db: &Db, photo: &Photo, opts: &Options, pattern: &Pattern, swapped: bool) -> Self {
+        let fit = FinalFit::new(db, photo, pattern, opts, swapped);
+        FinalFitJob {
+            pattern_json: pattern_json(pattern, swapped),
+            first: vec![None; fit.amplitudes()],
+            chosen: None,
+            rest: vec![None; fit.variants()],
+            fit,
+        }
+    }
+
+    /// The pattern and tone swap as JSON (for [`FitHelper::run`]).
+    pub fn pattern_json(&self) -> &str {
+        &self.pattern_json
+    }
+
+    /// The tasks of the current round not stored yet (empty: every task is done, and
+    /// [`FinalFitJob::finish`] gives the fit). The second round starts once the first is
+    /// stored whole: its amplitude is chosen then.
+    pub fn pending(&mut self) -> Vec<usize> {
+        let a = self.first.len();
+        let first: Vec<usize> = (0..a).filter(|&t| self.first[t].is_none()).collect();
+        if !first.is_empty() {
+            return first;
+        }
+        if self.chosen.is_none() && !self.rest.is_empty() {
+            let scored: Vec<Scored> = self.first.iter().flatten().cloned().collect();
+            self.chosen = Some(self.fit.chosen(&scored));
+        }
+        (0..self.rest.len())
+            .filter(|&k| self.rest[k].is_none())
+            .map(|k| a + k)
+            .collect()
+    }
+
+    /// The first round's choice, once [`FinalFitJob::pending`] has made it (the second
+    /// round's tasks need it); 0 before.
+    pub fn chosen(&self) -> usize {
+        self.chosen.unwrap_or(0)
+    }
+
+    /// Runs task `t` here without storing it: its result as JSON (for [`FinalFitJob::set`]).
+    pub fn run(&self, db: &Db, t: usize) -> String {
+        to_json(&run_task(&self.fit, db, t, self.chosen()))
+    }
+
+    /// Stores task `t`'s result (JSON from [`FinalFitJob::run`] or a helper's
+    /// [`FitHelper::run`]); a task out of range is ignored.
+    pub fn set(&mut self, t: usize, json: &str) -> Result<(), serde_json::Error> {
+        let r = from_json(json)?;
+        let a = self.first.len();
+        if t < a {
+            self.first[t] = Some(r);
+        } else if let Some(slot) = self.rest.get_mut(t - a) {
+            *slot = Some(r);
+        }
+        Ok(())
+    }
+
+    /// The fit: the best stored task with its output tone curve (the base when there was
+    /// nothing to choose). Every task must be stored ([`FinalFitJob::pending`] empty).
+    pub fn finish(&self) -> Analysis {
+        let scored = self.first.iter().chain(&self.rest).flatten().cloned();
+        self.fit.finish(scored)
+    }
+}
+
+/// A pattern and its tone swap as the final fit's tasks name them (JSON).
+pub fn pattern_json(pattern: &Pattern, swapped: bool) -> String {
+    serde_json::to_string(&(pattern, swapped)).expect("patterns serialise")
+}
+
+/// Task `t` of `fit` (numbered as [`FinalFitJob`] numbers them), the second round's with the
+/// first round's `chosen` amplitude.
+pub fn run_task(fit: &FinalFit, db: &Db, t: usize, chosen: usize) -> Scored {
+    let a = fit.amplitudes();
+    if t < a {
+        fit.amplitude(db, t)
+    } else {
+        fit.variant(db, t - a + 1, chosen)
+    }
+}
+
+/// A helper worker's side of a [`FinalFitJob`]: its own [`FinalFit`] of the job's pattern on
+/// the job's prepared photo (built on the first task, kept for the next ones).
+#[derive(Debug)]
+pub struct FitHelper {
+    photo: Photo,
+    opts: Options,
+    fit: Option<(String, FinalFit)>,
+}
+
+impl FitHelper {
+    /// A helper for the analysis-size `photo` analysed with `opts`.
+    pub fn new(photo: Photo, opts: Options) -> FitHelper {
+        FitHelper {
+            photo,
+            opts,
+            fit: None,
+        }
+    }
+
+    /// Builds the final fit of `pattern_json` ([`pattern_json`]) unless it is built already:
+    /// while the job builds its own, so that the helper is ready for tasks when the job is.
+    pub fn prepare(&mut self, db: &Db, pattern_json: &str) -> Result<&FinalFit, serde_json::Error> {
+        if self.fit.as_ref().is_none_or(|(p, _)| p != pattern_json) {
+            let (pattern, swapped): (Pattern, bool) = serde_json::from_str(pattern_json)?;
+            let fit = FinalFit::new(db, &self.photo, &pattern, &self.opts, swapped);
+            self.fit = Some((pattern_json.to_string(), fit));
+        }
+        Ok(&self.fit.as_ref().expect("built above").1)
+    }
+
+    /// Task `t` of the final fit of `pattern_json` ([`pattern_json`]) with the first round's
+    /// `chosen` amplitude, as JSON (for [`FinalFitJob::set`]).
+    pub fn run(
+        &mut self,
+        db: &Db,
+        pattern_json: &str,
+        t: usize,
+        chosen: usize,
+    ) -> Result<String, serde_json::Error> {
+        let fit = self.prepare(db, pattern_json)?;
+        Ok(to_json(&run_task(fit, db, t, chosen)))
+    }
+}
+
+/// A scored fit as it travels between workers: its `f64`s as their bits (JSON's decimal
+/// `f64`s need not parse back to the same bits), so that a task's result is the same wherever
+/// it ran. The params' `f32`s round-trip through JSON exactly (as presets and refinements do).
+#[derive(Serialize, Deserialize)]
+struct Wire {
+    score: u64,
+    params: Params,
+    band_powers: [Vec<u64>; 3],
+    channel_variance: [u64; 3],
+}
+
+fn to_json(r: &Scored) -> String {
+    let a = &r.analysis;
+    let wire = Wire {
+        score: r.score.to_bits(),
+        params: a.params.clone(),
+        band_powers: a
+            .band_powers
+            .clone()
+            .map(|v| v.iter().map(|x| x.to_bits()).collect()),
+        channel_variance: a.channel_variance.map(f64::to_bits),
+    };
+    serde_json::to_string(&wire).expect("params serialise")
+}
+
+fn from_json(json: &str) -> Result<Scored, serde_json::Error> {
+    let w: Wire = serde_json::from_str(json)?;
+    Ok(Scored {
+        score: f64::from_bits(w.score),
+        analysis: Analysis {
+            params: w.params,
+            band_powers: w
+                .band_powers
+                .map(|v| v.into_iter().map(f64::from_bits).collect()),
+            channel_variance: w.channel_variance.map(f64::from_bits),
+        },
+    })
+}
