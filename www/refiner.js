@@ -2,8 +2,9 @@
 // of the current suggestion job in parallel with the analysis worker, one family per message,
 // then runs tasks of the adopted model's final fit the same way. It loads the same wasm and
 // pattern database, rebuilds the job's retrieval from the job's prepared photo and seed
-// (`Refiner`), and returns each result as JSON, which the analysis worker stores with
-// `Suggestions.setRefined` or `Suggestions.setFitTask`: the same numbers as running it there.
+// (`Refiner`), and returns each result (a refinement or scored fit as JSON, a tone render as
+// pixels), which the analysis worker stores with `Suggestions.setRefined`, `setFitTask` or
+// `setFitTone`: the same numbers as running it there.
 import init, * as wasm from './pkg/proctex_worker.js';
 
 const ready = init().then(async () => {
@@ -32,22 +33,18 @@ onmessage = async (e) => {
       }
       return;
     }
-    if (m.type === 'refine' || m.type === 'fit') {
-      if (!current || current.token !== m.token) throw new Error('no photo for this job');
+    if (!current || current.token !== m.token) throw new Error('no photo for this job');
+    if (m.type === 'fitTone') {
+      const rgb = current.refiner.fitTone(m.params, m.task.tone);
+      postMessage({ token: m.token, task: m.task, rgb }, [rgb.buffer]);
+    } else if (m.type === 'refine' || m.type === 'fit') {
       const json = m.type === 'refine'
         ? current.refiner.refine(m.task.family)
         : current.refiner.fitTask(m.pattern, m.task.index, m.chosen);
       postMessage({ token: m.token, task: m.task, json });
     }
   } catch (err) {
-    if (m.type === 'fitPrepare') {
-      // Errors surface with the first task of this fit, which prepares it again.
-      if (current && current.token === m.token) {
-        try { current.refiner.fitPrepare(m.pattern); } catch { /* see above */ }
-      }
-      return;
-    }
-    if (m.type === 'refine' || m.type === 'fit') {
+    if (m.type === 'refine' || m.type === 'fit' || m.type === 'fitTone') {
       postMessage({ token: m.token, task: m.task, error: String(err.message ?? err) });
     }
   }

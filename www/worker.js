@@ -156,7 +156,8 @@ function helperDone(h, m) {
     s.helped++;
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
   } else if (m.task.kind === 'fit' && s.fit) {
-    s.job.setFitTask(m.task.index, m.json);
+    if (m.rgb) s.job.setFitTone(m.task.index, m.rgb);
+    else s.job.setFitTask(m.task.index, m.json);
     s.fit.helped++;
   }
   dispatch(s, h);
@@ -177,6 +178,8 @@ function dispatch(s, h) {
   s.inflight++;
   if (task.kind === 'refine') {
     h.worker.postMessage({ type: 'refine', token: s.token, task });
+  } else if (task.tone !== undefined) {
+    h.worker.postMessage({ type: 'fitTone', token: s.token, task, params: s.fit.best });
   } else {
     h.worker.postMessage({
       type: 'fit', token: s.token, task, pattern: s.fit.pattern, chosen: s.job.fitChosen(),
@@ -306,13 +309,19 @@ function suggestStep(s) {
 function fitStep(s) {
   if (s.fit.done) return;
   if (s.todo.length === 0 && s.inflight === 0) {
-    s.todo = Array.from(s.job.fitPending(), (index) => ({ kind: 'fit', index }));
+    // Rounds: the residual's amplitudes, the rougher variants, then the renders that the best
+    // fit's tone curve pools (`tone`: their tasks travel as pixels, not JSON).
+    const scored = s.job.fitScoredTasks();
+    s.todo = Array.from(s.job.fitPending(), (index) => (index >= scored
+      ? { kind: 'fit', index, tone: index - scored } : { kind: 'fit', index }));
+    if (s.todo.some((t) => t.tone !== undefined)) s.fit.best = s.job.fitBestParams();
     s.fit.tasks += s.todo.length;
     for (const h of helperPool()) dispatch(s, h);
   }
   if (s.todo.length > 0) {
-    const index = s.todo.shift().index;
-    s.job.setFitTask(index, s.job.fitTask(index));
+    const task = s.todo.shift();
+    if (task.tone !== undefined) s.job.setFitTone(task.index, s.job.fitTone(task.index));
+    else s.job.setFitTask(task.index, s.job.fitTask(task.index));
     scheduleStep(s);
     return;
   }

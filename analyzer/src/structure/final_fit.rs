@@ -3,9 +3,11 @@
 //! ([`FinalFit`]) that give the same result wherever and in whatever order they run: on
 //! native they run in parallel here, in the browser on the analysis worker and its helpers.
 
-use super::tone::{fit_tone_rendered, with_tone_applied};
+use super::tone::{
+    fit_tone_rendered, render_seed, tone_applies, tone_of_renders, with_tone_applied,
+};
 use super::{
-    Balance, RESIDUAL_GAIN_STRENGTHS, SELECTION_TONE_SEEDS, SPECTRUM_MATCH_ROUNDS,
+    Balance, RESIDUAL_GAIN_STRENGTHS, SELECTION_TONE_SEEDS, SPECTRUM_MATCH_ROUNDS, TONE_SEEDS,
     fit_structured_gains, fit_tone, gaussian_where_grown, match_spectrum, predicted_ratio,
     rougher_variants, scale_residual,
 };
@@ -222,18 +224,59 @@ impl FinalFit {
     /// with its output tone curve fitted on [`super::TONE_SEEDS`] renders; the base when there
     /// was nothing to choose.
     pub fn finish(&self, scored: impl IntoIterator<Item = Scored>) -> Analysis {
+        let mut a = self.best(scored);
+        let tone = fit_tone(&self.photo, &a.params);
+        if let Model::Structured(m) = &mut a.params.model {
+            m.tone = tone;
+        }
+        a
+    }
+
+    /// [`FinalFit::finish`] before its tone curve: the best of the scored fits (the base when
+    /// there was nothing to choose).
+    pub fn best(&self, scored: impl IntoIterator<Item = Scored>) -> Analysis {
         let mut best: Option<Scored> = None;
         for r in scored {
             if best.as_ref().is_none_or(|b| r.score < b.score) {
                 best = Some(r);
             }
         }
-        let mut a = best.map_or_else(|| self.base.clone(), |b| b.analysis);
-        let tone = fit_tone(&self.photo, &a.params);
-        if let Model::Structured(m) = &mut a.params.model {
+        best.map_or_else(|| self.base.clone(), |b| b.analysis)
+    }
+
+    /// The renders that the tone curve of `best` ([`FinalFit::best`]) pools: 0 when it gets
+    /// none.
+    pub fn tone_renders(&self, best: &Analysis) -> u32 {
+        if tone_applies(&self.photo, &best.params) {
+            TONE_SEEDS
+        } else {
+            0
+        }
+    }
+
+    /// Tone render `k` of `best`'s params (a task: the same pixels wherever it runs,
+    /// [`tone_render`]).
+    pub fn tone_render(&self, best: &crate::params::Params, k: u32) -> Vec<[f32; 3]> {
+        tone_render(&self.photo, best, k)
+    }
+
+    /// Pixels of the photo (of each tone render).
+    pub fn pixels(&self) -> usize {
+        self.photo.pixels.len()
+    }
+
+    /// [`FinalFit::finish`] from [`FinalFit::best`] and its [`FinalFit::tone_render`]s (in `k`
+    /// order; all [`FinalFit::tone_renders`] of them): the same analysis.
+    pub fn finish_with(&self, mut best: Analysis, renders: Vec<Vec<[f32; 3]>>) -> Analysis {
+        let tone = if renders.is_empty() {
+            None
+        } else {
+            tone_of_renders(&self.photo, renders).0
+        };
+        if let Model::Structured(m) = &mut best.params.model {
             m.tone = tone;
         }
-        a
+        best
     }
 
     /// One residual amplitude (`alpha`) and match (`matched`) of a fitted candidate: its score
@@ -295,6 +338,12 @@ impl FinalFit {
             analysis: untoned,
         }
     }
+}
+
+/// Render `k` of those the output tone curve of structured `params` pools on `photo`
+/// ([`super::fit_tone`]): `params` with the seed `params.seed + k` at the photo's size.
+pub fn tone_render(photo: &Photo, params: &crate::params::Params, k: u32) -> Vec<[f32; 3]> {
+    render_seed(photo, params, k, None)
 }
 
 /// Whether a residual channel would grow (step 6 then tries every amplitude).

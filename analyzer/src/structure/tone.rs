@@ -49,25 +49,49 @@ pub(super) fn fit_tone_rendered(
     seeds: u32,
     fields: Option<&Fields>,
 ) -> (Option<crate::params::Tone>, Option<Vec<[f32; 3]>>) {
-    use crate::distance::ColourQuantiles;
-    use crate::render::{View, render, render_with_fields};
-    let n = photo.pixels.len();
-    if n < 64 || !matches!(params.model, Model::Structured(_)) {
+    if !tone_applies(photo, params) {
         return (None, None);
     }
-    let mut renders: Vec<Vec<[f32; 3]>> = (0..seeds.max(1))
-        .map(|k| {
-            let p = Params {
-                seed: params.seed.wrapping_add(k),
-                ..params.clone()
-            };
-            match fields {
-                Some(f) => render_with_fields(&p, photo.width, photo.height, &View::default(), f),
-                None => render(&p, photo.width, photo.height, &View::default()),
-            }
-            .pixels
-        })
+    let renders: Vec<Vec<[f32; 3]>> = (0..seeds.max(1))
+        .map(|k| render_seed(photo, params, k, fields))
         .collect();
+    let (tone, shown) = tone_of_renders(photo, renders);
+    (tone, Some(shown))
+}
+
+/// Whether [`fit_tone`] fits a curve at all: a structured model on a photo of 64 pixels or more.
+pub(super) fn tone_applies(photo: &Photo, params: &Params) -> bool {
+    photo.pixels.len() >= 64 && matches!(params.model, Model::Structured(_))
+}
+
+/// Render `k` of those [`fit_tone`] pools: `params` with the seed `params.seed + k`, at the
+/// photo's size, without a curve (coloured from `fields` where they fit).
+pub(super) fn render_seed(
+    photo: &Photo,
+    params: &Params,
+    k: u32,
+    fields: Option<&Fields>,
+) -> Vec<[f32; 3]> {
+    use crate::render::{View, render, render_with_fields};
+    let p = Params {
+        seed: params.seed.wrapping_add(k),
+        ..params.clone()
+    };
+    match fields {
+        Some(f) => render_with_fields(&p, photo.width, photo.height, &View::default(), f),
+        None => render(&p, photo.width, photo.height, &View::default()),
+    }
+    .pixels
+}
+
+/// Steps 1–2 of [`fit_tone`] on its renders (the first is the user's seed's; at least one):
+/// the curve at its chosen strength, and that first render.
+pub(super) fn tone_of_renders(
+    photo: &Photo,
+    mut renders: Vec<Vec<[f32; 3]>>,
+) -> (Option<crate::params::Tone>, Vec<[f32; 3]>) {
+    use crate::distance::ColourQuantiles;
+    let n = photo.pixels.len();
     let sorted_photo = crate::noise_tone::sorted_channels(photo);
     // The colour distances on at most 16k pixels (the same ones of every image).
     let stride = n.div_ceil(16_384);
@@ -104,7 +128,7 @@ pub(super) fn fit_tone_rendered(
     let lambda = TONE_STRENGTHS[best];
     (
         (lambda > 0.0).then(|| tone_strength(&tone, lambda)),
-        Some(renders.swap_remove(0)),
+        renders.swap_remove(0),
     )
 }
 

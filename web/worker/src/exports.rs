@@ -221,6 +221,40 @@ impl Suggestions {
             .ok_or_else(|| JsValue::from_str("no final fit begun"))
     }
 
+    /// The final fit's scored tasks (its first two rounds: `fitTask`); the tasks from this
+    /// number on are tone renders (`fitTone`).
+    #[wasm_bindgen(js_name = fitScoredTasks)]
+    pub fn fit_scored_tasks(&self) -> usize {
+        self.job.fit_scored_tasks()
+    }
+
+    /// The final fit's best params as JSON once its tone renders are listed (for a helper's
+    /// `Refiner.fitTone`).
+    #[wasm_bindgen(js_name = fitBestParams)]
+    pub fn fit_best_params(&self) -> String {
+        self.job.fit_best_params().unwrap_or_default()
+    }
+
+    /// Runs tone-render task `t` here: the render as flat RGB for `setFitTone`.
+    #[wasm_bindgen(js_name = fitTone)]
+    pub fn fit_tone(&self, t: usize) -> Result<Vec<f32>, JsValue> {
+        self.job
+            .fit_tone(t)
+            .ok_or_else(|| JsValue::from_str(&format!("no tone render task {t}")))
+    }
+
+    /// Stores tone-render task `t` (flat RGB from `fitTone` or a helper's `Refiner.fitTone`).
+    #[wasm_bindgen(js_name = setFitTone)]
+    pub fn set_fit_tone(&mut self, t: usize, rgb: &[f32]) -> Result<(), JsValue> {
+        if self.job.set_fit_tone(t, rgb) {
+            Ok(())
+        } else {
+            Err(JsValue::from_str(&format!(
+                "tone render task {t}: not listed, or the wrong size"
+            )))
+        }
+    }
+
     /// Stores final-fit task `t`'s result (JSON from `fitTask` or a helper's `Refiner.fitTask`).
     #[wasm_bindgen(js_name = setFitTask)]
     pub fn set_fit_task(&mut self, t: usize, json: &str) -> Result<(), JsValue> {
@@ -424,6 +458,13 @@ impl Refiner {
         self.inner
             .fit_prepare(database()?, pattern)
             .map_err(js_error)
+    }
+
+    /// Tone render `k` of the final fit's best params (`Suggestions.fitBestParams`), as flat RGB
+    /// for `Suggestions.setFitTone` (task `fitScoredTasks() + k`).
+    #[wasm_bindgen(js_name = fitTone)]
+    pub fn fit_tone(&self, params: &str, k: u32) -> Result<Vec<f32>, JsValue> {
+        self.inner.fit_tone(params, k).map_err(js_error)
     }
 
     /// Final-fit task `t` of `pattern` (`Suggestions.rowPattern`) with the first round's

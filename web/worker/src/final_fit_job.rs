@@ -13,9 +13,10 @@ use serde::{Deserialize, Serialize};
 
 /// Step 6 of one pattern on one photo, task by task: tasks `0..A` are the first round (each
 /// residual amplitude of the refined pattern), tasks `A..A+V` the second (each rougher variant
-/// at the amplitude the first round chose). A task's result is the same wherever it ran
-/// ([`run_task`] on a [`FinalFit`] built from the same photo, options and pattern), so each is
-/// stored as it comes back, in any order.
+/// at the amplitude the first round chose), tasks `A+V..A+V+T` the third (the renders that the
+/// best fit's output tone curve pools, [`FinalFit::tone_render`]). A task's result is the same
+/// wherever it ran ([`run_task`] on a [`FinalFit`] built from the same photo, options and
+/// pattern; [`FitHelper::tone`]), so each is stored as it comes back, in any order.
 #[derive(Debug)]
 pub struct FinalFitJob {
     fit: FinalFit,
@@ -24,6 +25,9 @@ pub struct FinalFitJob {
     first: Vec<Option<Scored>>,
     chosen: Option<usize>,
     rest: Vec<Option<Scored>>,
+    /// The best of both rounds once they are stored, and its tone renders.
+    best: Option<Analysis>,
+    tone: Vec<Option<Vec<[f32; 3]>>>,
 }
 
 impl FinalFitJob {
@@ -36,6 +40,8 @@ impl FinalFitJob {
             first: vec![None; fit.amplitudes()],
             chosen: None,
             rest: vec![None; fit.variants()],
+            best: None,
+            tone: Vec::new(),
             fit,
         }
     }
@@ -58,10 +64,61 @@ impl FinalFitJob {
             let scored: Vec<Scored> = self.first.iter().flatten().cloned().collect();
             self.chosen = Some(self.fit.chosen(&scored));
         }
-        (0..self.rest.len())
+        let rest: Vec<usize> = (0..self.rest.len())
             .filter(|&k| self.rest[k].is_none())
             .map(|k| a + k)
+            .collect();
+        if !rest.is_empty() {
+            return rest;
+        }
+        if self.best.is_none() {
+            let best = self
+                .fit
+                .best(self.first.iter().chain(&self.rest).flatten().cloned());
+            self.tone = vec![None; self.fit.tone_renders(&best) as usize];
+            self.best = Some(best);
+        }
+        let s = self.scored_tasks();
+        (0..self.tone.len())
+            .filter(|&k| self.tone[k].is_none())
+            .map(|k| s + k)
             .collect()
+    }
+
+    /// Tasks of the first two rounds (scored fits, JSON); the tone renders' tasks follow.
+    pub fn scored_tasks(&self) -> usize {
+        self.first.len() + self.rest.len()
+    }
+
+    /// The best fit's params as JSON once the third round is listed (for [`FitHelper::tone`]).
+    pub fn best_params_json(&self) -> Option<String> {
+        let best = self.best.as_ref()?;
+        Some(serde_json::to_string(&best.params).expect("params serialise"))
+    }
+
+    /// Runs tone-render task `t` here (a third-round task): the render's RGB as flat `f32`s
+    /// (for [`FinalFitJob::set_tone`]); `None` for another task or before the third round.
+    pub fn run_tone(&self, t: usize) -> Option<Vec<f32>> {
+        let k = t.checked_sub(self.scored_tasks())?;
+        let best = self.best.as_ref()?;
+        (k < self.tone.len()).then(|| flat(self.fit.tone_render(&best.params, k as u32)))
+    }
+
+    /// Stores tone-render task `t`'s render (flat RGB from [`FinalFitJob::run_tone`] or a
+    /// helper's [`FitHelper::tone`]); false when it is not a listed tone task or has the wrong
+    /// size.
+    pub fn set_tone(&mut self, t: usize, rgb: &[f32]) -> bool {
+        let Some(k) = t.checked_sub(self.scored_tasks()) else {
+            return false;
+        };
+        let n = self.best.as_ref().map_or(0, |_| self.fit.pixels());
+        match self.tone.get_mut(k) {
+            Some(slot) if rgb.len() == 3 * n => {
+                *slot = Some(rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect());
+                true
+            }
+            _ => false,
+        }
     }
 
     /// The first round's choice, once [`FinalFitJob::pending`] has made it (the second
@@ -70,9 +127,10 @@ impl FinalFitJob {
         self.chosen.unwrap_or(0)
     }
 
-    /// Runs task `t` here without storing it: its result as JSON (for [`FinalFitJob::set`]).
-    pub fn run(&self, db: &Db, t: usize) -> String {
-        to_json(&run_task(&self.fit, db, t, self.chosen()))
+    /// Runs scored task `t` (first or second round) here without storing it: its result as
+    /// JSON (for [`FinalFitJob::set`]); `None` for another task.
+    pub fn run(&self, db: &Db, t: usize) -> Option<String> {
+        run_task(&self.fit, db, t, self.chosen()).map(|r| to_json(&r))
     }
 
     /// Stores task `t`'s result (JSON from [`FinalFitJob::run`] or a helper's
@@ -89,11 +147,24 @@ impl FinalFitJob {
     }
 
     /// The fit: the best stored task with its output tone curve (the base when there was
-    /// nothing to choose). Every task must be stored ([`FinalFitJob::pending`] empty).
+    /// nothing to choose), as [`FinalFit::finish`] gives it. Every task must be stored
+    /// ([`FinalFitJob::pending`] empty); before that, it is fitted here from what is stored.
     pub fn finish(&self) -> Analysis {
-        let scored = self.first.iter().chain(&self.rest).flatten().cloned();
-        self.fit.finish(scored)
+        match &self.best {
+            Some(best) if self.tone.iter().all(Option::is_some) => {
+                let renders = self.tone.iter().flatten().cloned().collect();
+                self.fit.finish_with(best.clone(), renders)
+            }
+            _ => self
+                .fit
+                .finish(self.first.iter().chain(&self.rest).flatten().cloned()),
+        }
     }
+}
+
+/// A render's pixels as flat RGB `f32`s (how a tone render travels between workers).
+fn flat(pixels: Vec<[f32; 3]>) -> Vec<f32> {
+    pixels.into_iter().flatten().collect()
 }
 
 /// A pattern and its tone swap as the final fit's tasks name them (JSON).
@@ -101,14 +172,16 @@ pub fn pattern_json(pattern: &Pattern, swapped: bool) -> String {
     serde_json::to_string(&(pattern, swapped)).expect("patterns serialise")
 }
 
-/// Task `t` of `fit` (numbered as [`FinalFitJob`] numbers them), the second round's with the
-/// first round's `chosen` amplitude.
-pub fn run_task(fit: &FinalFit, db: &Db, t: usize, chosen: usize) -> Scored {
+/// Scored task `t` of `fit` (numbered as [`FinalFitJob`] numbers them), the second round's
+/// with the first round's `chosen` amplitude; `None` past the second round.
+pub fn run_task(fit: &FinalFit, db: &Db, t: usize, chosen: usize) -> Option<Scored> {
     let a = fit.amplitudes();
     if t < a {
-        fit.amplitude(db, t)
+        Some(fit.amplitude(db, t))
+    } else if t - a < fit.variants() && chosen < a {
+        Some(fit.variant(db, t - a + 1, chosen))
     } else {
-        fit.variant(db, t - a + 1, chosen)
+        None
     }
 }
 
@@ -142,6 +215,18 @@ impl FitHelper {
         Ok(&self.fit.as_ref().expect("built above").1)
     }
 
+    /// Tone render `k` ([`FinalFitJob::run_tone`]'s task `scored_tasks + k`) of the best fit's
+    /// params (`params_json`, [`FinalFitJob::best_params_json`]) at this helper's photo size,
+    /// as flat RGB.
+    pub fn tone(&self, params_json: &str, k: u32) -> Result<Vec<f32>, serde_json::Error> {
+        let params: Params = serde_json::from_str(params_json)?;
+        Ok(flat(proctex::structure::tone_render(
+            &self.photo,
+            &params,
+            k,
+        )))
+    }
+
     /// Task `t` of the final fit of `pattern_json` ([`pattern_json`]) with the first round's
     /// `chosen` amplitude, as JSON (for [`FinalFitJob::set`]).
     pub fn run(
@@ -150,9 +235,10 @@ impl FitHelper {
         pattern_json: &str,
         t: usize,
         chosen: usize,
-    ) -> Result<String, serde_json::Error> {
-        let fit = self.prepare(db, pattern_json)?;
-        Ok(to_json(&run_task(fit, db, t, chosen)))
+    ) -> Result<String, String> {
+        let fit = self.prepare(db, pattern_json).map_err(|e| e.to_string())?;
+        let r = run_task(fit, db, t, chosen).ok_or_else(|| format!("no scored task {t}"))?;
+        Ok(to_json(&r))
     }
 }
 

@@ -415,7 +415,30 @@ impl SuggestJob {
     /// Runs final-fit task `t` here without storing it: its result as JSON (for
     /// [`SuggestJob::set_fit_task`]).
     pub fn fit_task(&self, db: &Db, t: usize) -> Option<String> {
-        Some(self.final_fit.as_ref()?.run(db, t))
+        self.final_fit.as_ref()?.run(db, t)
+    }
+
+    /// The final fit's scored tasks (its first two rounds, [`SuggestJob::fit_task`]); the
+    /// tasks from this number on are tone renders ([`SuggestJob::fit_tone`]).
+    pub fn fit_scored_tasks(&self) -> usize {
+        self.final_fit.as_ref().map_or(0, FinalFitJob::scored_tasks)
+    }
+
+    /// The final fit's best params as JSON once its tone renders are listed (what a helper's
+    /// [`Refiner::fit_tone`] renders).
+    pub fn fit_best_params(&self) -> Option<String> {
+        self.final_fit.as_ref()?.best_params_json()
+    }
+
+    /// Runs tone-render task `t` here: flat RGB for [`SuggestJob::set_fit_tone`].
+    pub fn fit_tone(&self, t: usize) -> Option<Vec<f32>> {
+        self.final_fit.as_ref()?.run_tone(t)
+    }
+
+    /// Stores tone-render task `t` (flat RGB from here or a helper); false when it does not
+    /// fit the task.
+    pub fn set_fit_tone(&mut self, t: usize, rgb: &[f32]) -> bool {
+        self.final_fit.as_mut().is_some_and(|f| f.set_tone(t, rgb))
     }
 
     /// Stores final-fit task `t`'s result (JSON from here or a helper).
@@ -535,8 +558,14 @@ impl Refiner {
         pattern_json: &str,
         t: usize,
         chosen: usize,
-    ) -> Result<String, serde_json::Error> {
+    ) -> Result<String, String> {
         self.fit.run(db, pattern_json, t, chosen)
+    }
+
+    /// Tone render `k` of the final fit's best params ([`SuggestJob::fit_best_params`]) as flat
+    /// RGB (for [`SuggestJob::set_fit_tone`], task `fit_scored_tasks + k`).
+    pub fn fit_tone(&self, params_json: &str, k: u32) -> Result<Vec<f32>, serde_json::Error> {
+        self.fit.tone(params_json, k)
     }
 }
 
@@ -772,7 +801,7 @@ mod tests {
         helper.fit_prepare(db, &pattern).unwrap();
         assert!(job.begin_fit(db, i).unwrap());
         assert_eq!(job.fit_pattern().unwrap().0, pattern);
-        let mut tasks = 0;
+        let (mut tasks, mut tones) = (0, 0);
         loop {
             let round = job.fit_pending();
             if round.is_empty() {
@@ -780,17 +809,32 @@ mod tests {
             }
             let (pattern, chosen) = job.fit_pattern().unwrap();
             let pattern = pattern.to_string();
+            let scored = job.fit_scored_tasks();
             for &t in round.iter().rev() {
-                let json = if t % 2 == 0 {
-                    helper.fit_task(db, &pattern, t, chosen).unwrap()
+                if t >= scored {
+                    let rgb = if t % 2 == 0 {
+                        let params = job.fit_best_params().unwrap();
+                        helper.fit_tone(&params, (t - scored) as u32).unwrap()
+                    } else {
+                        job.fit_tone(t).unwrap()
+                    };
+                    assert!(job.set_fit_tone(t, &rgb));
+                    assert!(!job.set_fit_tone(t, &rgb[3..]));
+                    tones += 1;
                 } else {
-                    job.fit_task(db, t).unwrap()
-                };
-                job.set_fit_task(t, &json).unwrap();
+                    let json = if t % 2 == 0 {
+                        helper.fit_task(db, &pattern, t, chosen).unwrap()
+                    } else {
+                        job.fit_task(db, t).unwrap()
+                    };
+                    job.set_fit_task(t, &json).unwrap();
+                }
                 tasks += 1;
             }
         }
         assert!(tasks > 1, "{tasks} tasks");
+        assert_eq!(tones, proctex::structure::TONE_SEEDS);
+        assert!(job.fit_task(db, job.fit_scored_tasks()).is_none());
         let tasked = serde_json::to_string(&job.fit_report().unwrap()).unwrap();
         assert_eq!(tasked, whole);
         // The noise model has no tasks; bad rows and results are errors.
@@ -803,5 +847,7 @@ mod tests {
         assert!(job.begin_fit(db, i).unwrap());
         assert!(job.set_fit_task(0, "not json").is_err());
         assert!(helper.fit_task(db, "not json", 0, 0).is_err());
+        assert!(helper.fit_task(db, &pattern, 99, 0).is_err());
+        assert!(helper.fit_tone("not json", 0).is_err());
     }
 }
