@@ -283,7 +283,6 @@ impl FinalFit {
     /// and the analysis without its selection tone curve. Every render of one candidate shares
     /// its pattern and seed: its fields are drawn once ([`Fields`]) and each render only
     /// colours them.
-    #[allow(clippy::too_many_arguments)]
     fn score(
         &self,
         db: &crate::db::Db,

@@ -1,0 +1,281 @@
+//! Tests of the worker's jobs (`jobs`).
+
+use super::*;
+use proctex::input::Crop;
+
+/// The page refuses, before decoding, what the CLI refuses: too many pixels by the header,
+/// TIFF (with the reason), files over the byte limit; and lets ordinary photos through.
+#[test]
+fn photo_files_are_checked_before_the_browser_decodes_them() {
+    let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+    png.extend_from_slice(&20000u32.to_be_bytes());
+    png.extend_from_slice(&20000u32.to_be_bytes());
+    let e = check_photo_file(&png).unwrap_err();
+    assert!(e.contains("20000×20000") && e.contains("16384"), "{e}");
+    let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+    png.extend_from_slice(&9000u32.to_be_bytes());
+    png.extend_from_slice(&8000u32.to_be_bytes());
+    let e = check_photo_file(&png).unwrap_err();
+    assert!(e.contains("50.0 MP") && e.contains("scale it down"), "{e}");
+    let e = check_photo_file(b"II*\0\x08\0\0\0").unwrap_err();
+    assert!(e.contains("TIFF"), "{e}");
+    let path = format!(
+        "{}/../../www/samples/stk_rock_mountain_512.png",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    assert_eq!(check_photo_file(&std::fs::read(path).unwrap()), Ok(()));
+    assert_eq!(check_photo_file(b"not a known header"), Ok(()));
+    assert!(check_photo_size(8000, 8000).is_err());
+    assert!(check_photo_size(4000, 3000).is_ok());
+}
+
+fn sample() -> (Vec<u8>, u32, u32) {
+    let path = format!(
+        "{}/../../www/samples/stk_rock_mountain_512.png",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let p = Photo::decode(&std::fs::read(path).unwrap()).unwrap();
+    let rgba = p
+        .pixels
+        .iter()
+        .flat_map(|c| {
+            [
+                (c[0] * 255.0).round() as u8,
+                (c[1] * 255.0).round() as u8,
+                (c[2] * 255.0).round() as u8,
+                255,
+            ]
+        })
+        .collect();
+    (rgba, p.width, p.height)
+}
+
+#[test]
+fn crop_analysis_equals_the_cli_crop() {
+    let (rgba, w, h) = sample();
+    let report = analyze_rgba(&rgba, w, h, Some([40, 60, 300, 200]), 7).unwrap();
+    let photo = Photo::from_rgba8(w, h, &rgba).unwrap();
+    let opts = Options {
+        seed: 7,
+        crop: Some(Crop {
+            x: 40,
+            y: 60,
+            w: 300,
+            h: 200,
+        }),
+        ..Options::default()
+    };
+    let cli = analyze_photo(&photo, &opts).unwrap().params;
+    assert_eq!(report.params, cli);
+    assert_eq!(report.photo.spectrum.len(), report.model.spectrum.len());
+    for hist in report
+        .photo
+        .histograms
+        .iter()
+        .chain(&report.model.histograms)
+    {
+        assert!((hist.iter().sum::<f64>() - 1.0).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn bad_crops_and_buffers_are_errors() {
+    let (rgba, w, h) = sample();
+    assert!(analyze_rgba(&rgba, w, h, Some([500, 0, 100, 100]), 1).is_err());
+    assert!(analyze_rgba(&rgba, w, h, Some([0, 0, 0, 100]), 1).is_err());
+    assert!(analyze_rgba(&rgba[4..], w, h, None, 1).is_err());
+    // Too small to analyse: a clear error, not a panic.
+    let e = analyze_rgba(&rgba, w, h, Some([0, 0, 8, 8]), 1).unwrap_err();
+    assert!(e.to_string().contains("8"), "{e}");
+}
+
+#[test]
+fn model_statistics_follow_the_photo() {
+    let (rgba, w, h) = sample();
+    let r = analyze_rgba(&rgba, w, h, None, 1).unwrap();
+    // Spectra within 2 dB RMS over the rings the model covers, and within 4.5 dB in each:
+    // the model's bands lie an octave apart, and a fit of a smooth photo spectrum leaves a
+    // ripple with that period (measured on this sample: 1.6 dB RMS, at most 3.7 dB; the
+    // octave solve's fit left 1.0 dB RMS here but fits the development set's photos worse,
+    // docs/measurements.md).
+    let db: Vec<f64> = r
+        .photo
+        .spectrum
+        .iter()
+        .zip(&r.model.spectrum)
+        .take(16)
+        .map(|(a, b)| 10.0 * (a / b).log10())
+        .collect();
+    let rms = (db.iter().map(|d| d * d).sum::<f64>() / db.len() as f64).sqrt();
+    assert!(rms < 2.0, "{rms} dB RMS: {db:?}");
+    assert!(db.iter().all(|d| d.abs() < 4.5), "{db:?}");
+    let preview = preview_rgba(&r.params, 32, 16);
+    assert_eq!(preview.len(), 32 * 16 * 4);
+}
+
+#[test]
+fn suggestions_in_steps_equal_the_cli_ranking() {
+    let (rgba, w, h) = sample();
+    let db = Db::shipped();
+    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    let steps = proctex::pattern::PatternKind::ALL.len();
+    assert_eq!(job.progress(), (0, steps));
+    while job.step(db) {}
+    assert!(job.pending().is_empty());
+    let rows = job.rank(db);
+    // Every family refined but those the bound skipped.
+    assert_eq!(
+        job.progress().0 + rows.iter().filter(|r| r.skipped).count(),
+        steps
+    );
+    let opts = Options {
+        seed: 1,
+        ..Options::default()
+    };
+    let photo = Photo::from_rgba8(w, h, &rgba).unwrap();
+    let direct = proctex::retrieve::suggest(db, &prepare_photo(&photo, &opts).unwrap(), &opts);
+    assert_eq!(rows.len(), direct.len());
+    for (r, d) in rows.iter().zip(&direct) {
+        assert_eq!(
+            (r.name.as_str(), r.score, r.skipped),
+            (d.name, d.score, d.skipped)
+        );
+    }
+    let side = THUMB_SIDE as usize;
+    let thumbs = job.thumbnails();
+    assert_eq!(thumbs.len(), rows.len() * side * side * 4);
+    // The noise model and the best family are fitted at once, the others on request: then
+    // each row is the CLI's, and its thumbnail appears.
+    let fitted: Vec<bool> = rows.iter().map(|r| r.distance.is_some()).collect();
+    assert_eq!(fitted.iter().filter(|&&f| f).count(), 2, "{rows:?}");
+    let opaque = |t: &[u8]| t.chunks_exact(4).all(|px| px[3] == 255);
+    for (i, t) in thumbs.chunks_exact(side * side * 4).enumerate() {
+        assert_eq!(opaque(t), fitted[i], "row {i}");
+        assert!(fitted[i] || t.iter().all(|&b| b == 0), "row {i}");
+    }
+    let mut order = Vec::new();
+    while let Some(i) = job.fit_next(db) {
+        order.push(i);
+        assert!(opaque(&job.thumbnail(i)));
+    }
+    let expected: Vec<usize> = (0..rows.len()).filter(|&i| !fitted[i]).collect();
+    assert_eq!(order, expected);
+    for (i, d) in direct.iter().enumerate() {
+        assert_eq!(job.row(i).distance, d.distance, "row {i}");
+    }
+    let i = rows.iter().position(|r| r.name != "noise").unwrap();
+    let report = job.report(db, i).unwrap();
+    report.params.validate().unwrap();
+    assert!(matches!(
+        report.params.model,
+        proctex::params::Model::Structured(_)
+    ));
+    assert!(job.report(db, rows.len()).is_err());
+}
+
+/// The page's helper workers: families refined by a `Refiner` built from the job's prepared
+/// photo, stored in any order, rank exactly as the job's own steps do.
+#[test]
+fn families_refined_elsewhere_in_any_order_rank_the_same() {
+    let (rgba, w, h) = sample();
+    let db = Db::shipped();
+    let mut stepped = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    while stepped.step(db) {}
+    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    let (px, pw, ph) = job.prepared();
+    let helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+    // Round by round, each round's families in reverse order, alternately here and there.
+    loop {
+        let round = job.pending();
+        if round.is_empty() {
+            break;
+        }
+        for &i in round.iter().rev() {
+            let json = if i % 2 == 0 {
+                helper.refine(db, i)
+            } else {
+                job.refine(db, i)
+            };
+            job.set_refined(i, &json).unwrap();
+        }
+    }
+    assert_eq!(job.progress(), stepped.progress());
+    let (a, b) = (stepped.rank(db), job.rank(db));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(
+            (&x.name, x.score, x.refined, x.skipped),
+            (&y.name, y.score, y.refined, y.skipped)
+        );
+    }
+    assert!(job.set_refined(0, "not json").is_err());
+    assert!(Refiner::new(db, &px[1..], pw, ph, 1).is_err());
+}
+
+/// The adopted model's final fit in tasks, shared with a helper (`Refiner::fit_task`) and
+/// stored round by round in any order, gives the report that fitting it in one piece
+/// gives, bit for bit.
+#[test]
+fn the_final_fit_in_tasks_anywhere_equals_the_report() {
+    let (rgba, w, h) = sample();
+    let db = Db::shipped();
+    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    while job.step(db) {}
+    let rows = job.rank(db);
+    let i = rows.iter().position(|r| r.name != "noise").unwrap();
+    let whole = serde_json::to_string(&job.report(db, i).unwrap()).unwrap();
+    let (px, pw, ph) = job.prepared();
+    let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+    let pattern = job.row_pattern(i).unwrap();
+    helper.fit_prepare(db, &pattern).unwrap();
+    assert!(job.begin_fit(db, i).unwrap());
+    assert_eq!(job.fit_pattern().unwrap().0, pattern);
+    let (mut tasks, mut tones) = (0, 0);
+    loop {
+        let round = job.fit_pending();
+        if round.is_empty() {
+            break;
+        }
+        let (pattern, chosen) = job.fit_pattern().unwrap();
+        let pattern = pattern.to_string();
+        let scored = job.fit_scored_tasks();
+        for &t in round.iter().rev() {
+            if t >= scored {
+                let rgb = if t % 2 == 0 {
+                    let params = job.fit_best_params().unwrap();
+                    helper.fit_tone(&params, (t - scored) as u32).unwrap()
+                } else {
+                    job.fit_tone(t).unwrap()
+                };
+                assert!(job.set_fit_tone(t, &rgb));
+                assert!(!job.set_fit_tone(t, &rgb[3..]));
+                tones += 1;
+            } else {
+                let json = if t % 2 == 0 {
+                    helper.fit_task(db, &pattern, t, chosen).unwrap()
+                } else {
+                    job.fit_task(db, t).unwrap()
+                };
+                job.set_fit_task(t, &json).unwrap();
+            }
+            tasks += 1;
+        }
+    }
+    assert!(tasks > 1, "{tasks} tasks");
+    assert_eq!(tones, proctex::structure::TONE_SEEDS);
+    assert!(job.fit_task(db, job.fit_scored_tasks()).is_none());
+    let tasked = serde_json::to_string(&job.fit_report().unwrap()).unwrap();
+    assert_eq!(tasked, whole);
+    // The noise model has no tasks; bad rows and results are errors.
+    let noise = rows.iter().position(|r| r.name == "noise").unwrap();
+    assert!(job.row_pattern(noise).is_none());
+    assert!(!job.begin_fit(db, noise).unwrap());
+    assert!(job.fit_pending().is_empty());
+    assert!(job.fit_report().is_err());
+    assert!(job.begin_fit(db, rows.len()).is_err());
+    assert!(job.begin_fit(db, i).unwrap());
+    assert!(job.set_fit_task(0, "not json").is_err());
+    assert!(helper.fit_task(db, "not json", 0, 0).is_err());
+    assert!(helper.fit_task(db, &pattern, 99, 0).is_err());
+    assert!(helper.fit_tone("not json", 0).is_err());
+}
