@@ -149,8 +149,10 @@ function helperDone(h, m) {
   s.inflight--;
   if (m.error) {
     h.broken = true;
-    // This worker runs it instead (a refinement that failed after the ranking is dropped).
-    if (m.task.kind === (s.fit ? 'fit' : 'refine') && !(s.finished && !s.fit)) s.todo.unshift(m.task);
+    // This worker runs it instead, unless the job has moved past it (a refinement that failed
+    // after the ranking is dropped).
+    const stillWanted = s.fit ? m.task.kind === 'fit' : m.task.kind === 'refine' && !s.finished;
+    if (stillWanted) s.todo.unshift(m.task);
   } else if (m.task.kind === 'refine' && !s.finished) {
     s.job.setRefined(m.task.family, m.json);
     s.helped++;
@@ -161,8 +163,8 @@ function helperDone(h, m) {
     s.fit.helped++;
   }
   dispatch(s, h);
-  // This worker waits only while helpers hold families: wake it when the last one is back or a
-  // family came back to `todo`.
+  // This worker waits only while helpers hold tasks: wake it when the last one is back or a
+  // task came back to `todo`.
   if (s.waiting && (s.inflight === 0 || s.todo.length > 0)) {
     s.waiting = false;
     scheduleStep(s);
