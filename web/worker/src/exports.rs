@@ -218,7 +218,7 @@ impl Suggestions {
     pub fn fit_task(&self, t: usize) -> Result<String, JsValue> {
         self.job
             .fit_task(database()?, t)
-            .ok_or_else(|| JsValue::from_str("no final fit begun"))
+            .ok_or_else(|| JsValue::from_str(&format!("no scored final-fit task {t}")))
     }
 
     /// The final fit's scored tasks (its first two rounds: `fitTask`); the tasks from this

@@ -147,18 +147,12 @@ impl FinalFitJob {
     }
 
     /// The fit: the best stored task with its output tone curve (the base when there was
-    /// nothing to choose), as [`FinalFit::finish`] gives it. Every task must be stored
-    /// ([`FinalFitJob::pending`] empty); before that, it is fitted here from what is stored.
-    pub fn finish(&self) -> Analysis {
-        match &self.best {
-            Some(best) if self.tone.iter().all(Option::is_some) => {
-                let renders = self.tone.iter().flatten().cloned().collect();
-                self.fit.finish_with(best.clone(), renders)
-            }
-            _ => self
-                .fit
-                .finish(self.first.iter().chain(&self.rest).flatten().cloned()),
-        }
+    /// nothing to choose), as [`FinalFit::finish`] gives it; `None` until every task is stored
+    /// ([`FinalFitJob::pending`] empty).
+    pub fn finish(&self) -> Option<Analysis> {
+        let best = self.best.as_ref()?;
+        let renders: Option<Vec<_>> = self.tone.iter().cloned().collect();
+        Some(self.fit.finish_with(best.clone(), renders?))
     }
 }
 

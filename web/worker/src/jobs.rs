@@ -449,12 +449,19 @@ impl SuggestJob {
         }
     }
 
-    /// The report of the final fit begun by [`SuggestJob::begin_fit`], every task stored.
+    /// The report of the final fit begun by [`SuggestJob::begin_fit`] once every task is
+    /// stored (an error before).
     pub fn fit_report(&self) -> proctex::error::Result<Report> {
-        let f = self.final_fit.as_ref().ok_or_else(|| {
-            proctex::error::Error::Option("no final fit begun (begin_fit first)".into())
-        })?;
-        self.report_of(|_, _| f.finish())
+        let analysis = self
+            .final_fit
+            .as_ref()
+            .and_then(FinalFitJob::finish)
+            .ok_or_else(|| {
+                proctex::error::Error::Option(
+                    "the final fit is not begun (begin_fit) or not every task is stored".into(),
+                )
+            })?;
+        self.report_of(|_, _| analysis)
     }
 
     /// The report of ranked candidate `i` fitted to the photo at analysis size (what adopting

@@ -274,6 +274,7 @@ fn the_final_fit_in_tasks_anywhere_equals_the_report() {
     assert!(job.fit_report().is_err());
     assert!(job.begin_fit(db, rows.len()).is_err());
     assert!(job.begin_fit(db, i).unwrap());
+    assert!(job.fit_report().is_err()); // no task stored yet
     assert!(job.set_fit_task(0, "not json").is_err());
     assert!(helper.fit_task(db, "not json", 0, 0).is_err());
     assert!(helper.fit_task(db, &pattern, 99, 0).is_err());
