@@ -166,6 +166,9 @@ async function analysePhoto(msg, transfer, name) {
 }
 let lastReport = null;
 let lastSuggestions = null;
+// The last pick adopted from the list: its row, the milliseconds of its final fit in the
+// worker, that fit's tasks and how many the helper workers ran (0 when it ran in one piece).
+let lastAdoption = null;
 let lastTimings = null;
 
 // `suggest: false`: the model suggestions wait until the user asks (the start-up sample: its
@@ -475,7 +478,13 @@ window.proctexHost = {
     const [, reply] = job({ type: 'adopt', index });
     const m = await reply;
     if (m.type === 'error') wasm.suggestionsFailed(m.message);
-    else wasm.suggestionAdopted(m.index, m.report);
+    else if (!m.superseded) {
+      lastAdoption = {
+        index: m.index, ms: m.ms, fitTasks: m.fitTasks ?? 0, fitHelped: m.fitHelped ?? 0,
+        helpers: m.helpers ?? 0, count: (lastAdoption?.count ?? 0) + 1,
+      };
+      wasm.suggestionAdopted(m.index, m.report);
+    }
   },
   // The current photo's suggestions, asked for with the app's "Suggest models" button.
   suggestModels: async () => {
@@ -559,6 +568,7 @@ window.proctex = {
   // cut the refinement, how many families the helper workers refined (`helped`, of `helpers`
   // helpers), and how many rankings the page has received (`count`).
   lastSuggestions: () => lastSuggestions,
+  lastAdoption: () => lastAdoption,
   // e2e/bench: at most `n` helper workers refine families for the next suggestions (default:
   // the cores beyond the worker's and the page's, at most 3), to time refinement with and
   // without them in one run; `script` (tests) starts them from another script URL.

@@ -78,11 +78,14 @@ dbReady.catch(() => {}); // reported per photo, below
 // started (this worker takes from the front, the helpers from the back); `inflight`: families
 // at the helpers; `waiting`: this worker has nothing left to refine and waits for them.
 // Tasks are `{ kind: 'refine', family }` or, once the list is ranked and a model family is its
-// best (`finished`), `{ kind: 'fit', index }`: the final fit of the adopted model (step 6 of the
-// structured fit) in rounds of tasks (`fitPending()`), shared the same way; `fit`: its state
-// ({ rows, thumbs, tasks, helped }) until its report goes out with the list.
+// best (`finished`), `{ kind: 'fit', index, gen }`: the final fit of the adopted model (step 6 of
+// the structured fit) in rounds of tasks (`fitPending()`), shared the same way; `fit`: its state
+// ({ gen, pattern, tasks, helped, done, finish }) until `finish` sends its report: with the list
+// for the best row, as 'adopted' for a row the user picks later. A pick begins a new fit (a new
+// `gen`) that supersedes one still running; the helpers' replies for an older one are dropped.
 let suggestion = null;
 let tokens = 0;
+let fitGens = 0;
 // The refinement's time budget (milliseconds from the end of retrieval; 0: none), set by the
 // app. When it runs out, the refinement stops as Cancel stops it: the family being refined
 // finishes its step (one family, a second or two), and the list is ranked with what there is.
@@ -151,13 +154,15 @@ function helperDone(h, m) {
     h.broken = true;
     // This worker runs it instead, unless the job has moved past it (a refinement that failed
     // after the ranking is dropped).
-    const stillWanted = s.fit ? m.task.kind === 'fit' : m.task.kind === 'refine' && !s.finished;
+    const stillWanted = s.fit
+      ? m.task.kind === 'fit' && s.fit.gen === m.task.gen && !s.fit.done
+      : m.task.kind === 'refine' && !s.finished;
     if (stillWanted) s.todo.unshift(m.task);
   } else if (m.task.kind === 'refine' && !s.finished) {
     s.job.setRefined(m.task.family, m.json);
     s.helped++;
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
-  } else if (m.task.kind === 'fit' && s.fit) {
+  } else if (m.task.kind === 'fit' && s.fit?.gen === m.task.gen && !s.fit.done) {
     if (m.rgb) s.job.setFitTone(m.task.index, m.rgb);
     else s.job.setFitTask(m.task.index, m.json);
     s.fit.helped++;
@@ -209,9 +214,20 @@ function engageHelpers(s) {
 function dropSuggestion() {
   if (suggestion) {
     clearTimeout(suggestion.budgetTimer);
+    answerAdoption(suggestion, { superseded: true });
     suggestion.job.free();
   }
   suggestion = null;
+}
+
+// Ends the pick being fitted in `s`, if any, with `answer` (superseded, or an error).
+function answerAdoption(s, answer) {
+  const f = s.fit;
+  if (!f || f.done || f.adoption === null) return;
+  f.done = true;
+  postMessage(answer.error
+    ? { type: 'error', id: f.adoption, message: answer.error }
+    : { type: 'adopted', id: f.adoption, index: f.index, superseded: true });
 }
 
 async function startSuggestions(id, crop, seed) {
@@ -253,6 +269,10 @@ function scheduleStep(s) {
   // A macrotask first, so that messages that arrived meanwhile are queued before the step.
   setTimeout(() => {
     queue = queue.then(() => suggestStep(s)).catch((err) => {
+      if (s.fit && !s.fit.done && s.fit.adoption !== null) {
+        answerAdoption(s, { error: `Adopting the model: ${err.message ?? err}` });
+        return;
+      }
       postMessage({ type: 'suggestError', id: s.id, message: `Model suggestions: ${err.message ?? err}` });
     });
   }, 0);
@@ -293,17 +313,48 @@ function suggestStep(s) {
   // the helpers build their own fit of the pattern while this worker builds the job's.
   const pattern = s.job.rowPattern(0);
   if (pattern) {
-    s.fit = { rows, thumbs, pattern, tasks: 0, helped: 0, done: false };
-    s.todo = [];
-    engageHelpers(s);
-    for (const h of helperPool()) {
-      if (!h.broken && h.token === s.token) h.worker.postMessage({ type: 'fitPrepare', token: s.token, pattern });
-    }
-    s.job.beginFit(0);
+    beginFit(s, 0, pattern, null, (best) => postSuggestions(s, rows, thumbs, best));
     fitStep(s);
     return;
   }
   postSuggestions(s, rows, thumbs, null);
+}
+
+// Begins the final fit of ranked row `index` (its `pattern`, `Suggestions.rowPattern`) in
+// tasks; `finish` takes its report. `adoption`: the id of the 'adopt' request it answers (null:
+// the list's own best row). The helpers build their own fit of the pattern meanwhile.
+function beginFit(s, index, pattern, adoption, finish) {
+  s.fit = {
+    gen: ++fitGens, index, pattern, adoption, finish, tasks: 0, helped: 0, done: false,
+    t0: performance.now(),
+  };
+  s.todo = [];
+  s.waiting = false;
+  engageHelpers(s);
+  for (const h of helperPool()) {
+    if (!h.broken && h.token === s.token) h.worker.postMessage({ type: 'fitPrepare', token: s.token, pattern });
+  }
+  s.job.beginFit(index);
+}
+
+// Adopts ranked row `index` of `s` for request `id`: a structured row's final fit in tasks
+// shared with the helpers, answered with 'adopted' when its last task is in. Returns false
+// when it cannot run that way (the noise model's row, whose fit is one quick analysis; or the
+// list's own fit still running), for the caller to fit it in one piece.
+function adoptInTasks(s, id, index) {
+  if (!s.finished || (s.fit && !s.fit.done && s.fit.adoption === null)) return false;
+  const pattern = s.job.rowPattern(index);
+  if (!pattern) return false;
+  answerAdoption(s, { superseded: true }); // an earlier pick still being fitted
+  beginFit(s, index, pattern, id, (report) => {
+    const f = s.fit;
+    postMessage({
+      type: 'adopted', id, index, report, ms: performance.now() - f.t0, fitTasks: f.tasks,
+      fitHelped: f.helped, helpers: s.helpers,
+    });
+  });
+  scheduleStep(s);
+  return true;
 }
 
 // One task of the final fit per queued step (a new photo supersedes it between steps; Cancel
@@ -314,8 +365,9 @@ function fitStep(s) {
     // Rounds: the residual's amplitudes, the rougher variants, then the renders that the best
     // fit's tone curve pools (`tone`: their tasks travel as pixels, not JSON).
     const scored = s.job.fitScoredTasks();
+    const gen = s.fit.gen;
     s.todo = Array.from(s.job.fitPending(), (index) => (index >= scored
-      ? { kind: 'fit', index, tone: index - scored } : { kind: 'fit', index }));
+      ? { kind: 'fit', index, gen, tone: index - scored } : { kind: 'fit', index, gen }));
     if (s.todo.some((t) => t.tone !== undefined)) s.fit.best = s.job.fitBestParams();
     s.fit.tasks += s.todo.length;
     for (const h of helperPool()) dispatch(s, h);
@@ -332,7 +384,7 @@ function fitStep(s) {
     return;
   }
   s.fit.done = true;
-  postSuggestions(s, s.fit.rows, s.fit.thumbs, s.job.fitReport());
+  s.fit.finish(s.job.fitReport());
 }
 
 function postSuggestions(s, rows, thumbs, best) {
@@ -444,8 +496,10 @@ async function handle(m) {
     }
     case 'adopt': {
       if (!suggestion) throw new Error('no suggestions to adopt');
+      // Not awaited: the fit's tasks are steps of this same queue.
+      if (adoptInTasks(suggestion, m.id, m.index)) return;
       const report = suggestion.job.report(m.index);
-      postMessage({ type: 'adopted', id: m.id, index: m.index, report });
+      postMessage({ type: 'adopted', id: m.id, index: m.index, report, ms: performance.now() - t0 });
       return;
     }
     case 'stats': {

@@ -3,7 +3,7 @@
 const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
-const { openApp, state, waitFrames, suggestionsFor } = require('../tests/helpers');
+const { openApp, state, waitFrames, suggestionsFor, clickWidget } = require('../tests/helpers');
 
 const ROOT = path.resolve(__dirname, '..', '..');
 // PROCTEX_BENCH=quick (scripts/test.sh in CI): fewer repetitions, one refinement pass per
@@ -169,8 +169,15 @@ test('benchmark: model retrieval for a 256² query in WASM, and what refinement 
     await page.evaluate((k) => window.proctex.setRefineHelpers(k), n);
     // The full run first refines another photo, so that each count starts alike.
     if (!QUICK) await suggestionsFor(page, 'skimage_gravel_512.png');
-    await suggestionsFor(page, 'skimage_brick_512.png');
+    const s = await suggestionsFor(page, 'skimage_brick_512.png');
     timed[n] = await page.evaluate(() => window.proctex.lastSuggestions());
+    // A click on the second row: its final fit, shared with the helpers as the first row's is.
+    await clickWidget(page, 'suggestion.1');
+    await page.waitForFunction(() => {
+      window.proctex.requestRepaint();
+      return window.proctex.state().adopted === 1;
+    }, null, { polling: 200, timeout: 120_000 });
+    timed[n].adoption = { ...(await page.evaluate(() => window.proctex.lastAdoption())), name: s.suggestions[1].name };
   }
   await page.evaluate(() => window.proctex.setFlatShader(false));
   if (QUICK) refinementLine('skimage_brick_512.png', timed[3]);
@@ -181,6 +188,10 @@ test('benchmark: model retrieval for a 256² query in WASM, and what refinement 
       `${timed[3].rows.filter((r) => r.refined !== null).length} families refined by them; ratio ` +
       `${(timed[0].ms / timed[3].ms).toFixed(2)}×; same ranking: ` +
       `${JSON.stringify(timed[0].rows) === JSON.stringify(timed[3].rows)}`);
+  const [a0, a3] = [timed[0].adoption, timed[3].adoption];
+  out(`skimage_brick_512.png, trivial shader: adopting the second row (${a3.name}) by a click, its final fit ` +
+      `without helper workers ${a0.ms.toFixed(0)} ms; with ${a3.helpers} ${a3.ms.toFixed(0)} ms, ` +
+      `${a3.fitHelped} of ${a3.fitTasks} tasks run by them; ratio ${(a0.ms / a3.ms).toFixed(2)}×`);
   fs.mkdirSync(path.join(__dirname, '..', 'test-results'), { recursive: true });
   fs.appendFileSync(path.join(__dirname, '..', 'test-results', 'bench.txt'), lines.join('\n') + '\n');
 });

@@ -31,14 +31,19 @@ function expectClose(a, b, where) {
   }
 }
 
-async function adopt(page, i) {
-  const before = await state(page);
-  await clickWidget(page, `suggestion.${i}`);
+// Waits until row `i` of the list is the adopted model.
+async function waitAdopted(page, i) {
   await page.waitForFunction((k) => {
     window.proctex.requestRepaint();
     return window.proctex.state().adopted === k;
   }, i, { polling: 100, timeout: 60_000 });
   await waitFrames(page, 3);
+}
+
+async function adopt(page, i) {
+  const before = await state(page);
+  await clickWidget(page, `suggestion.${i}`);
+  await waitAdopted(page, i);
   expect((await state(page)).undo).toBe(before.undo + 1);
 }
 
@@ -72,8 +77,31 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe('noise');
   const other = s.suggestions.findIndex((r, i) => i > 0 && r.name !== 'noise');
   await adopt(page, other);
-  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[other].name);
+  const name = s.suggestions[other].name;
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(name);
   expect(meanDiff(await grab(page, square), first)).toBeGreaterThan(2);
+  // The pick's final fit also ran in tasks shared with the helpers, and is the CLI's analysis
+  // of the photo with that family.
+  const a = await page.evaluate(() => window.proctex.lastAdoption());
+  console.log(`adopted ${name} (row ${other}): its final fit ${a.ms.toFixed(0)} ms, ` +
+    `${a.fitHelped} of ${a.fitTasks} tasks run by ${a.helpers} helper workers`);
+  expect(a.index).toBe(other);
+  expect(a.fitTasks).toBeGreaterThan(1);
+  if (a.helpers > 0) expect(a.fitHelped).toBeGreaterThan(0);
+  const picked = JSON.parse(execFileSync(CLI, ['analyze', path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png'),
+    '--model', name, '--json'], { stdio: ['ignore', 'pipe', 'ignore'] }).toString());
+  expectClose(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model, picked.model, 'picked model');
+
+  // A second pick while the first is still being fitted replaces it: only the second is adopted.
+  const [p1, p2] = s.suggestions.map((r, i) => i).filter((i) => i > 0 && i !== other && i !== noise);
+  const undo = (await state(page)).undo;
+  await clickWidget(page, `suggestion.${p1}`);
+  await clickWidget(page, `suggestion.${p2}`);
+  await waitAdopted(page, p2);
+  expect((await state(page)).undo).toBe(undo + 1);
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[p2].name);
+  const last = await page.evaluate(() => window.proctex.lastAdoption());
+  expect([last.index, last.count]).toEqual([p2, a.count + 1]);
 });
 
 test("the user's pick survives the same crop ranked again; another photo gets its best", async ({ page }) => {
@@ -86,10 +114,7 @@ test("the user's pick survives the same crop ranked again; another photo gets it
   const again = await suggestionsFor(page, 'skimage_brick_512.png');
   const row = again.suggestions.findIndex((r) => r.name === name);
   expect(row).toBeGreaterThan(0);
-  await page.waitForFunction((k) => {
-    window.proctex.requestRepaint();
-    return window.proctex.state().adopted === k;
-  }, row, { polling: 100, timeout: 60_000 });
+  await waitAdopted(page, row);
   expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(name);
   // Another photo: its own best, and back on the first, the pick is forgotten.
   const gravel = await suggestionsFor(page, 'skimage_gravel_512.png');
