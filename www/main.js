@@ -47,7 +47,7 @@ worker.onmessage = (e) => {
     else if (m.type === 'suggestError') wasm.suggestionsFailed(m.message);
     else {
       lastSuggestions = {
-        rows: JSON.parse(m.rows), ms: m.ms, cancelled: m.cancelled, timedOut: m.timedOut,
+        rows: JSON.parse(m.rows), ms: m.ms, refinedMs: m.refinedMs, cancelled: m.cancelled, timedOut: m.timedOut,
         helpers: m.helpers, helped: m.helped, fitTasks: m.fitTasks, fitHelped: m.fitHelped,
         count: (lastSuggestions?.count ?? 0) + 1,
         id: m.id, fittedMs: null,
@@ -528,6 +528,15 @@ window.proctex = {
   loadImage,
   loadPixels,
   loadSample: async (name) => loadImage(await fetchBytes(`samples/${name}`), name),
+  // e2e/bench: rectangle [x, y, w, h] of a sample, analysed as a photo of its own.
+  loadSampleCrop: async (name, [x, y, w, h]) => {
+    const bitmap = await createImageBitmap(new Blob([await fetchBytes(`samples/${name}`)]),
+      { colorSpaceConversion: 'none', premultiplyAlpha: 'none' });
+    const ctx = new OffscreenCanvas(w, h).getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(bitmap, x, y, w, h, 0, 0, w, h);
+    bitmap.close();
+    return loadPixels(ctx.getImageData(0, 0, w, h).data, w, h, `${name} [${x}, ${y}, ${w}, ${h}]`);
+  },
   capture,
   getParams: () => wasm.getParams() ?? null,
   setParams: (json) => wasm.setParams(typeof json === 'string' ? json : JSON.stringify(json)),

@@ -179,6 +179,7 @@ function helperDone(h, m) {
 // Gives helper `h` the next task of `s`, when it is idle and holds the job's photo.
 function dispatch(s, h) {
   if (h.broken || h.job || h.token !== s.token || s.todo.length === 0) return;
+  if (helpers.indexOf(h) >= helperLimit) return; // e2e/bench: fewer helpers from now on
   if (s.fit ? s.fit.done : s.finished || s.cancelled) return;
   const task = s.todo.pop();
   h.job = { token: s.token, task };
@@ -307,6 +308,7 @@ function suggestStep(s) {
   }
   s.finished = true;
   clearTimeout(s.budgetTimer);
+  s.refinedMs = performance.now() - s.t0;
   const rows = s.job.rank();
   const thumbs = s.job.thumbnails();
   // The best row's final fit, in tasks shared with the helpers (its report goes with the list);
@@ -350,7 +352,7 @@ function adoptInTasks(s, id, index) {
     const f = s.fit;
     postMessage({
       type: 'adopted', id, index, report, ms: performance.now() - f.t0, fitTasks: f.tasks,
-      fitHelped: f.helped, helpers: s.helpers,
+      fitHelped: f.helped, helpers: Math.min(helperLimit, helperPool().filter((h) => !h.broken).length),
     });
   });
   scheduleStep(s);
@@ -390,7 +392,7 @@ function fitStep(s) {
 function postSuggestions(s, rows, thumbs, best) {
   postMessage({
     type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled, timedOut: s.timedOut,
-    ms: performance.now() - s.t0, helpers: s.helpers, helped: s.helped,
+    ms: performance.now() - s.t0, refinedMs: s.refinedMs, helpers: s.helpers, helped: s.helped,
     fitTasks: s.fit?.tasks ?? 0, fitHelped: s.fit?.helped ?? 0,
   }, [thumbs.buffer]);
   fitRows(s);

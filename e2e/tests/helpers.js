@@ -172,12 +172,14 @@ async function morphRockToGrass(page) {
 }
 
 // Loads a shipped sample and waits for its ranked suggestions.
-async function suggestionsFor(page, sample) {
+// `crop` ([x, y, w, h], optional): that rectangle of the sample, analysed as a photo of its own.
+async function suggestionsFor(page, sample, crop) {
   const before = [
     (await state(page)).analyses,
     await page.evaluate(() => window.proctex.lastSuggestions()?.count ?? 0),
   ];
-  await page.evaluate((n) => window.proctex.loadSample(n), sample);
+  if (crop) await page.evaluate(([n, c]) => window.proctex.loadSampleCrop(n, c), [sample, crop]);
+  else await page.evaluate((n) => window.proctex.loadSample(n), sample);
   // The worker's ranking first, without waking the app: each frame of the software adapter
   // costs CPU that the worker and its helpers would otherwise have. The list comes with what
   // decides its order fitted; every other row's fit follows (`fittedMs`): wait for them all.
@@ -195,8 +197,9 @@ async function suggestionsFor(page, sample) {
   await waitFrames(page, 3);
   const s = await state(page);
   const t = await page.evaluate(() => window.proctex.lastSuggestions());
-  console.log(`${sample}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
-    `(retrieval to ranking ${t.ms.toFixed(0)} ms, every row fitted ` +
+  console.log(`${sample}${crop ? ` [${crop}]` : ''}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
+    `(retrieval to ranking ${t.ms.toFixed(0)} ms, of which the ranking and the best row's final fit ` +
+    `${(t.ms - t.refinedMs).toFixed(0)} ms; every row fitted ` +
     `${t.fittedMs === null ? 'with it' : `${t.fittedMs.toFixed(0)} ms`}; ${t.helped} of ${s.suggestions.length - 1} ` +
     `families refined and ${t.fitHelped} of ${t.fitTasks} final-fit tasks run by ${t.helpers} helper workers)`);
   return s;
