@@ -340,14 +340,15 @@ function beginFit(s, index, pattern, adoption, finish) {
 }
 
 // Adopts ranked row `index` of `s` for request `id`: a structured row's final fit in tasks
-// shared with the helpers, answered with 'adopted' when its last task is in. Returns false
-// when it cannot run that way (the noise model's row, whose fit is one quick analysis; or the
-// list's own fit still running), for the caller to fit it in one piece.
+// shared with the helpers, answered with 'adopted' when its last task is in. An earlier pick
+// still being fitted is superseded whatever this one is. Returns false when this one cannot
+// run in tasks (the noise model's row, whose fit is one quick analysis; or the list's own fit
+// still running), for the caller to fit it in one piece.
 function adoptInTasks(s, id, index) {
-  if (!s.finished || (s.fit && !s.fit.done && s.fit.adoption === null)) return false;
+  answerAdoption(s, { superseded: true });
+  if (!s.finished || (s.fit && !s.fit.done)) return false;
   const pattern = s.job.rowPattern(index);
   if (!pattern) return false;
-  answerAdoption(s, { superseded: true }); // an earlier pick still being fitted
   beginFit(s, index, pattern, id, (report) => {
     const f = s.fit;
     postMessage({
@@ -385,8 +386,9 @@ function fitStep(s) {
     s.waiting = true; // a helper's reply wakes it up
     return;
   }
+  const report = s.job.fitReport(); // before `done`: an error here answers a pick's request
   s.fit.done = true;
-  s.fit.finish(s.job.fitReport());
+  s.fit.finish(report);
 }
 
 function postSuggestions(s, rows, thumbs, best) {

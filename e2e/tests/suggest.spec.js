@@ -102,6 +102,15 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe(s.suggestions[p2].name);
   const last = await page.evaluate(() => window.proctex.lastAdoption());
   expect([last.index, last.count]).toEqual([p2, a.count + 1]);
+  // The same when the second pick is the noise model (fitted in one piece, not in tasks).
+  await clickWidget(page, `suggestion.${p1}`);
+  await clickWidget(page, `suggestion.${noise}`);
+  await waitAdopted(page, noise);
+  await page.waitForTimeout(6000); // the superseded fit would have landed by now
+  await waitFrames(page, 3);
+  expect((await state(page)).adopted).toBe(noise);
+  expect((await state(page)).undo).toBe(undo + 2);
+  expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe('noise');
 });
 
 test("the user's pick survives the same crop ranked again; another photo gets its best", async ({ page }) => {
