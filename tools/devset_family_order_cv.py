@@ -23,7 +23,8 @@ Usage: tools/devset_family_order_cv.py RUN.jsonl [--k K] [--grid 0,1]
 import json
 import sys
 
-from devset_occam_cv import fold_of, patch_overall
+from devset_occam_cv import fold_of
+from devset_occam_cv import patches as occam_patches
 
 OCCAM = 0.2  # retrieve::NOISE_MODEL_MARGIN
 DARK_NETWORK_SKEWNESS = -0.599  # retrieve::DARK_NETWORK_SKEWNESS
@@ -36,21 +37,12 @@ def structure(r):
 
 
 def patches(photos):
-    out = []
-    for p in photos:
-        e = p["entry"]
-        for i, c in enumerate(p["choices"]):
-            rank = c["ranking"]
-            noise = next(r for r in rank if r["name"] == "noise")
-            fams = [r for r in rank if r["name"] != "noise"]
-            best = min(fams, key=lambda r: r["score"])
-            out.append(dict(
-                file=e["file"], category=e["category"], labels=e["families"] or [],
-                families=sorted(fams, key=structure), noise_d=noise["distance"],
-                margin=best["score"] - structure(best), chosen=c["chosen"],
-                family_ok=patch_overall(p["auto"], i) <= patch_overall(p["noise"], i),
-                dark=c["photo_cues"][SKEWNESS] < DARK_NETWORK_SKEWNESS))
-    return out
+    """The OCCAM script's patches, each with its families nearest first by structure distance,
+    its noise-model margin and whether its cues say dark network."""
+    cues = [c["photo_cues"] for p in photos for c in p["choices"]]
+    return [dict(pt, families=sorted(pt["families"], key=structure), margin=OCCAM * pt["self_d"],
+                 dark=cue[SKEWNESS] < DARK_NETWORK_SKEWNESS)
+            for pt, cue in zip(occam_patches(photos, OCCAM), cues)]
 
 
 def choose(pt, w, k):

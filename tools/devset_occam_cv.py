@@ -38,7 +38,8 @@ def patch_overall(fid, i):
 
 
 def patches(photos, current):
-    """(photo file, category, labels, per-occam chooser, served-if-family) per patch."""
+    """(photo file, category, labels, the families' ranking rows, per-occam chooser,
+    served-if-family) per patch."""
     out = []
     for p in photos:
         e = p["entry"]
@@ -52,6 +53,7 @@ def patches(photos, current):
             family_ok = (c["chosen"] == best["name"]
                          and patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
             out.append(dict(file=e["file"], category=e["category"], labels=e["families"] or [],
+                            families=fams,
                             noise_d=noise["distance"], best=best["name"], best_d=best["distance"],
                             self_d=margin / current, chosen=c["chosen"], family_ok=family_ok))
     return out
