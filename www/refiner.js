@@ -1,10 +1,11 @@
 // A helper of the analysis worker (worker.js starts up to three): it refines model families
 // of the current suggestion job in parallel with the analysis worker, one family per message,
-// then runs tasks of the adopted model's final fit the same way. It loads the same wasm and
+// then fits the families whose renders order the list, then runs tasks of the adopted model's
+// final fit the same way. It loads the same wasm and
 // pattern database, rebuilds the job's retrieval from the job's prepared photo and seed
-// (`Refiner`), and returns each result (a refinement or scored fit as JSON, a tone render as
-// pixels), which the analysis worker stores with `Suggestions.setRefined`, `setFitTask` or
-// `setFitTone`: the same numbers as running it there.
+// (`Refiner`), and returns each result (a refinement, a family's fit or a scored fit as JSON,
+// a tone render as pixels), which the analysis worker stores with `Suggestions.setRefined`,
+// `setOrderFit`, `setFitTask` or `setFitTone`: the same numbers as running it there.
 import init, * as wasm from './pkg/proctex_worker.js';
 
 const ready = init().then(async () => {
@@ -37,14 +38,15 @@ onmessage = async (e) => {
     if (m.type === 'fitTone') {
       const rgb = current.refiner.fitTone(m.params, m.task.tone);
       postMessage({ token: m.token, task: m.task, rgb }, [rgb.buffer]);
-    } else if (m.type === 'refine' || m.type === 'fit') {
-      const json = m.type === 'refine'
-        ? current.refiner.refine(m.task.family)
-        : current.refiner.fitTask(m.pattern, m.task.index, m.chosen);
+    } else if (m.type === 'refine' || m.type === 'order' || m.type === 'fit') {
+      let json;
+      if (m.type === 'refine') json = current.refiner.refine(m.task.family);
+      else if (m.type === 'order') json = current.refiner.orderFit(m.task.family, m.refined);
+      else json = current.refiner.fitTask(m.pattern, m.task.index, m.chosen);
       postMessage({ token: m.token, task: m.task, json });
     }
   } catch (err) {
-    if (m.type === 'refine' || m.type === 'fit' || m.type === 'fitTone') {
+    if (m.type === 'refine' || m.type === 'order' || m.type === 'fit' || m.type === 'fitTone') {
       postMessage({ token: m.token, task: m.task, error: String(err.message ?? err) });
     }
   }

@@ -77,8 +77,11 @@ dbReady.catch(() => {}); // reported per photo, below
 // then those that could still reach the top three); `todo`: families of the round nobody has
 // started (this worker takes from the front, the helpers from the back); `inflight`: families
 // at the helpers; `waiting`: this worker has nothing left to refine and waits for them.
-// Tasks are `{ kind: 'refine', family }` or, once the list is ranked and a model family is its
-// best (`finished`), `{ kind: 'fit', index, gen }`: the final fit of the adopted model (step 6 of
+// Tasks are `{ kind: 'refine', family }`; once the refinement is over (`finished`),
+// `{ kind: 'order', family }`: the fits of the families nearest by structure, whose renders
+// order the list (`orderFits()`), while this worker fits the noise model (`ordering`: { noise,
+// helped, done }); once the list is ranked and a model family is its best, `{ kind: 'fit',
+// index, gen }`: the final fit of the adopted model (step 6 of
 // the structured fit) in rounds of tasks (`fitPending()`), shared the same way; `fit`: its state
 // ({ gen, pattern, tasks, helped, done, finish }) until `finish` sends its report: with the list
 // for the best row, as 'adopted' for a row the user picks later. A pick begins a new fit (a new
@@ -156,21 +159,25 @@ function helperDone(h, m) {
     // after the ranking is dropped).
     const stillWanted = s.fit
       ? m.task.kind === 'fit' && s.fit.gen === m.task.gen && !s.fit.done
-      : m.task.kind === 'refine' && !s.finished;
+      : m.task.kind === 'order' ? !s.ordering.done : m.task.kind === 'refine' && !s.finished;
     if (stillWanted) s.todo.unshift(m.task);
   } else if (m.task.kind === 'refine' && !s.finished) {
     s.job.setRefined(m.task.family, m.json);
     s.helped++;
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
+  } else if (m.task.kind === 'order' && !s.ordering.done) {
+    s.job.setOrderFit(m.task.family, m.json);
+    s.ordering.helped++;
   } else if (m.task.kind === 'fit' && s.fit?.gen === m.task.gen && !s.fit.done) {
     if (m.rgb) s.job.setFitTone(m.task.index, m.rgb);
     else s.job.setFitTask(m.task.index, m.json);
     s.fit.helped++;
   }
   dispatch(s, h);
-  // This worker waits only while helpers hold tasks: wake it when the last one is back or a
-  // task came back to `todo`.
-  if (s.waiting && (s.inflight === 0 || s.todo.length > 0)) {
+  // This worker waits only while helpers hold tasks: wake it when the last one is back, a
+  // task came back to `todo`, or an ordering fit is in (a cancelled refinement's family may
+  // still be out).
+  if (s.waiting && (s.inflight === 0 || s.todo.length > 0 || m.task.kind === 'order')) {
     s.waiting = false;
     scheduleStep(s);
   }
@@ -180,12 +187,14 @@ function helperDone(h, m) {
 function dispatch(s, h) {
   if (h.broken || h.job || h.token !== s.token || s.todo.length === 0) return;
   if (helpers.indexOf(h) >= helperLimit) return; // e2e/bench: fewer helpers from now on
-  if (s.fit ? s.fit.done : s.finished || s.cancelled) return;
+  if (s.fit ? s.fit.done : s.ordering ? s.ordering.done : s.finished || s.cancelled) return;
   const task = s.todo.pop();
   h.job = { token: s.token, task };
   s.inflight++;
   if (task.kind === 'refine') {
     h.worker.postMessage({ type: 'refine', token: s.token, task });
+  } else if (task.kind === 'order') {
+    h.worker.postMessage({ type: 'order', token: s.token, task, refined: s.job.refinedOf(task.family) });
   } else if (task.tone !== undefined) {
     h.worker.postMessage({ type: 'fitTone', token: s.token, task, params: s.fit.best });
   } else {
@@ -253,7 +262,7 @@ async function startSuggestions(id, crop, seed) {
   const s = {
     job, id, seed, token: ++tokens, cancelled: false, timedOut: false, t0: performance.now(),
     todo: refineTasks(job), inflight: 0, finished: false,
-    waiting: false, helped: 0, helpers: 0, fit: null,
+    waiting: false, helped: 0, helpers: 0, fit: null, ordering: null, orderTasks: 0,
   };
   suggestion = s;
   armBudget(s);
@@ -292,6 +301,10 @@ function suggestStep(s) {
     fitStep(s);
     return;
   }
+  if (s.ordering) {
+    orderStep(s);
+    return;
+  }
   if (s.finished) return; // already ranked
   if (!s.cancelled && s.todo.length === 0 && s.inflight === 0) nextRound(s);
   if (!s.cancelled && s.todo.length > 0) {
@@ -309,6 +322,43 @@ function suggestStep(s) {
   s.finished = true;
   clearTimeout(s.budgetTimer);
   s.refinedMs = performance.now() - s.t0;
+  // The fits that order the list, in tasks shared with the helpers; the noise model here first.
+  s.ordering = { noise: false, helped: 0, done: false };
+  s.todo = Array.from(s.job.orderFits(), (family) => ({ kind: 'order', family }));
+  s.orderTasks = s.todo.length;
+  s.waiting = false;
+  engageHelpers(s);
+  orderStep(s);
+}
+
+// One step of the ordering fits: the noise model, then the families' tasks nobody has taken;
+// then, with every family's fit stored, the list.
+function orderStep(s) {
+  const o = s.ordering;
+  if (o.done) return;
+  if (!o.noise) {
+    s.job.fitNoise();
+    o.noise = true;
+    scheduleStep(s);
+    return;
+  }
+  if (s.todo.length > 0) {
+    const family = s.todo.shift().family;
+    s.job.setOrderFit(family, s.job.orderFit(family));
+    o.stored = (o.stored ?? 0) + 1;
+    scheduleStep(s);
+    return;
+  }
+  if ((o.stored ?? 0) + o.helped < s.orderTasks) {
+    s.waiting = true; // a helper's reply wakes it up
+    return;
+  }
+  o.done = true;
+  rankList(s);
+}
+
+// Ranks the list (every fit that orders it is stored) and begins its best row's final fit.
+function rankList(s) {
   const rows = s.job.rank();
   const thumbs = s.job.thumbnails();
   // The best row's final fit, in tasks shared with the helpers (its report goes with the list);
@@ -396,12 +446,13 @@ function postSuggestions(s, rows, thumbs, best) {
     type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled, timedOut: s.timedOut,
     ms: performance.now() - s.t0, refinedMs: s.refinedMs, helpers: s.helpers, helped: s.helped,
     fitTasks: s.fit?.tasks ?? 0, fitHelped: s.fit?.helped ?? 0,
+    orderTasks: s.orderTasks, orderHelped: s.ordering?.helped ?? 0,
   }, [thumbs.buffer]);
   fitRows(s);
 }
 
-// The rows that the ranking did not fit (every family but the best: the order does not depend
-// on them), one per macrotask, so that a new photo, a crop or a click is not kept waiting;
+// The rows that the ranking did not fit (every family but those nearest by structure: the
+// order does not depend on them), one per macrotask, so that a new photo, a crop or a click is not kept waiting;
 // each row's texture distance and thumbnail follow the list.
 function fitRows(s) {
   setTimeout(() => {

@@ -47,6 +47,7 @@ fn main() {
                         families: full.steps(),
                         evaluations: e,
                         starts: 1,
+                        ..Refinement::default()
                     };
                     Suggester::new(db, patch, &o, r)
                 })

@@ -1,68 +1,36 @@
-//! Automatic model choice: every candidate, the noise model included,
-//! gets one texture distance to the photo, and the nearest wins.
+//! Automatic model choice: the pattern families ordered by how near their structure and their
+//! fitted renders come to the photo's, and the noise model placed among them by its render.
 //!
 //! 1. The photo's two-tone structure map ([`crate::two_tone`]) gives the query descriptor
 //!    ([`crate::gabor`]); the database ([`crate::db`]) gives each pattern family's nearest
-//!    entry over rotations and both tone orientations.
-//! 2. Each family's match is fitted to the photo ([`crate::structure::fit_structured`]: ramp
-//!    and residual), and so is the noise model (Lagae's analysis), on a reduced copy of the
-//!    photo ([`RANK_SIZE`]) to keep the ranking fast.
-//! 3. The texture distance: each fitted candidate is rendered, projected on the photo's own
-//!    tone line, and described; its weighted descriptor distance to the photo's is its score.
-//!    Rendering the complete candidate (ramp and residual noise included) is what makes the
-//!    noise model and the structured ones comparable: a pure retrieval distance would compare
-//!    a pattern's bare structure with the photo's, which the noise model has none of.
+//!    entries over rotations and both tone orientations (the two-tone paper's retrieval).
+//! 2. The families that could reach the top three are refined by Nelder–Mead on the bare
+//!    pattern's *structure distance* to the photo's map ([`crate::refine`]; Bourque & Dudek).
+//! 3. The nearest families by structure and the noise model are fitted to the photo
+//!    ([`crate::structure::fit_structured`]: ramp and residual; Lagae's analysis) on a reduced
+//!    copy of it ([`RANK_SIZE`]), rendered, projected on the photo's own tone line and
+//!    described: their *texture distance*. Rendering the complete candidate (ramp and residual
+//!    noise included) is what makes the noise model and the structured ones comparable, and
+//!    it orders the nearest families ([`TEXTURE_WEIGHT`]); see [`Suggester::suggestions`].
+
+mod rank;
+
+pub use rank::{
+    DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, RENDER_ORDERED, TEXTURE_WEIGHT, self_distance,
+    texture_distance,
+};
 
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
 use crate::db::{Db, Match, query};
 use crate::error::Result;
-use crate::gabor::{Descriptor, describe, descriptor_image};
+use crate::gabor::Descriptor;
 use crate::input::Photo;
 use crate::noise::Tile;
 use crate::params::Params;
 use crate::pattern::{Pattern, PatternKind};
 use crate::refine::refine;
-use crate::render::{Prepared, View, render_prepared};
-use crate::structure::{fit_structured, fit_structured_with};
+use crate::structure::fit_structured;
 use crate::two_tone::{TwoTone, network_phase, two_tone};
-
-/// A structured candidate ranks above the noise model only when its texture distance is lower
-/// by more than this fraction of the distance between two patches of the photo itself (its top
-/// and bottom halves). Ours, not the papers': a pattern fitted with a ramp and refined can
-/// always match a stochastic photo's descriptor a little better than the noise model (it has
-/// more parameters), but a gain smaller than the photo's own variation is not a structure; then
-/// the simpler, isotropic noise model is the better answer (gravel, grass).
-///
-/// Measured (gain of the best family over noise / the photo's self distance, with the
-/// database's fine-grain rule, [`Db::pattern_distance`]): the stochastic photos of
-/// `../shared/photos` below 0 (grass, mountain rock) and 0.07 (gravel; 0.15 before that
-/// rule); the structured ones 0.22 (reptile skin, cells) and 0.57 (hacienda flagstones) to 2.3
-/// (planks); black rock, whose ridges turbulence draws, 1.0. On the synthetic round trip,
-/// structured queries lost to noise at 0.21–0.5 (coarse patterns, whose halves hold few
-/// features and differ a lot). It was 0.6 until this was measured (hacienda and reptile skin
-/// went to noise, 3 round-trip cases lost), then 0.25; 0.2 won a coarse ridged case (gain
-/// 0.21): 63 → 64 of 72 before the fine-grain rule, 65 with it.
-pub const NOISE_MODEL_MARGIN: f32 = 0.2;
-
-/// Below this skewness of its detrended luminance ([`crate::cues::dark_skewness`]) a photo has
-/// a dark network (thin dark joints, cracks, gaps between stones standing out of a lighter
-/// surface), and the best family ranks above the noise model whatever their texture distances.
-/// Ours, not the papers': the noise model matches such a photo's histogram, spectrum and
-/// colours closely (its texture distance often wins), but it scatters the dark pixels as
-/// grain instead of drawing them as lines; the texture distance cannot see that, the
-/// skewness of the photo can.
-///
-/// Chosen by cross-validation on the development set (`tools/devset_dark_network_cv.py`,
-/// 4 folds by photo; thresholds that keep ≥ 95 % of the stochastic patches served, the largest
-/// structured labelled rate): held-out folds pooled, structured labelled 31 → 40 of 100
-/// patches, stochastic served 106 → 105 of 108; the folds chose −0.73, −1.08, −0.73, −0.72.
-/// Chosen again the same way when the noise model gained oriented bands (its texture distance
-/// fell, so it won more patches): the folds chose −0.60, −0.60, −0.60, −0.65; held out,
-/// structured labelled 35/100 and stochastic served 106/108 (the former −0.726 on the new
-/// model: 34/100 on the whole set). This value is the whole set's choice. Single cues measured
-/// the same way and not kept: kurtosis, edge sparsity, bimodality (31/100 held out), lattice,
-/// coherence.
-pub const DARK_NETWORK_SKEWNESS: f32 = -0.599;
 
 /// The ranks that leaving a family unrefined must not change: the first model and the rest of
 /// the top three that the app lists.
@@ -99,7 +67,6 @@ pub fn refinement_reach(kind: PatternKind) -> f32 {
         PatternKind::Rings => 0.53,
     }
 }
-
 /// Longer side of the photo copy the candidates are fitted and scored on.
 pub const RANK_SIZE: u32 = 256;
 
@@ -136,8 +103,10 @@ pub struct Suggestion {
     /// The texture distance of the fitted candidate to the photo (lower is nearer); `None`
     /// for a family not fitted yet ([`Suggester::ranked`], [`Suggester::fit`]).
     pub distance: Option<f32>,
-    /// The ranking key: `distance`, plus [`NOISE_MODEL_MARGIN`] × the photo's own patch-to-patch distance
-    /// for structured candidates.
+    /// The ranking key, lower first ([`Suggester::suggestions`]): for the families, their
+    /// structure distance (blended with `distance` for the first [`RENDER_ORDERED`]) plus
+    /// [`NOISE_MODEL_MARGIN`] × the photo's own patch-to-patch distance; for the noise model,
+    /// its `distance` moved onto the best family's scale.
     pub score: f32,
     /// The descriptor distance of the bare pattern found by retrieval (0 for noise).
     pub retrieval_distance: f32,
@@ -152,25 +121,6 @@ pub struct Suggestion {
     pub preview: Option<Params>,
 }
 
-/// The texture distance of `params` to the photo whose two-tone line is `tt` and whose
-/// descriptor is `query`: `params` rendered at the photo's size (with `tile`, its noise tile),
-/// projected on that line, described.
-pub fn texture_distance(
-    db: &Db,
-    tt: &TwoTone,
-    query: &Descriptor,
-    params: &Params,
-    tile: &Tile,
-) -> f32 {
-    let (w, h) = (tt.width, tt.height);
-    let img = render_prepared(&Prepared::new(params), tile, w, h, &View::default()).to_photo();
-    let s = tt.project(&img);
-    db.distance(
-        query,
-        &describe(&descriptor_image(&s, w as usize, h as usize)),
-    )
-}
-
 /// How much refinement [`suggest_with`] does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Refinement {
@@ -181,6 +131,11 @@ pub struct Refinement {
     /// Starts per family: its best this many database entries, each refined with an equal
     /// share of the evaluations; the best result is kept.
     pub starts: usize,
+    /// Families that the analysis' ranking fits and renders, nearest by structure first: at
+    /// least [`RENDER_ORDERED`], which order the list; the others' fits only fill in their
+    /// rows' texture distances and previews (`usize::MAX`: every family, as `proctex fidelity`
+    /// records them). [`suggest_with`] fits every family whatever this says.
+    pub fitted: usize,
 }
 
 impl Default for Refinement {
@@ -198,6 +153,7 @@ impl Default for Refinement {
             families: PatternKind::ALL.len(),
             evaluations: crate::refine::DEFAULT_EVALUATIONS,
             starts: 2,
+            fitted: RENDER_ORDERED,
         }
     }
 }
@@ -208,6 +164,7 @@ impl Refinement {
         families: 0,
         evaluations: 0,
         starts: 1,
+        fitted: RENDER_ORDERED,
     };
 }
 
@@ -301,7 +258,14 @@ pub struct Suggester {
     refined: Vec<Refined>,
     /// Which families are refined (in any order: [`Suggester::set_refined`]).
     is_refined: Vec<bool>,
+    /// Fits computed elsewhere ([`Suggester::set_fitted`]: the browser's helper workers), by
+    /// family (in `starts` order), and the noise model's ([`Suggester::set_noise_fit`]).
+    fitted: Vec<Option<Fit>>,
+    noise_fit: Option<Fit>,
 }
+
+/// A candidate fitted on the reduced photo and its texture distance to it.
+pub type Fit = (Params, f32);
 
 /// A family's pattern after refinement (or its retrieved one), its refined distance (`None`:
 /// not refined), and whether its tones pair reversed.
@@ -329,6 +293,7 @@ impl Suggester {
             .map(|v| (v[0].pattern.clone(), None, v[0].swapped))
             .collect();
         let is_refined = vec![false; refined.len()];
+        let fitted = vec![None; refined.len()];
         Suggester {
             dark_network: crate::cues::dark_skewness(&small) < DARK_NETWORK_SKEWNESS,
             small,
@@ -341,6 +306,8 @@ impl Suggester {
             starts,
             refined,
             is_refined,
+            fitted,
+            noise_fit: None,
         }
     }
 
@@ -419,7 +386,13 @@ impl Suggester {
         if i < self.steps() {
             self.refined[i] = r;
             self.is_refined[i] = true;
+            self.fitted[i] = None;
         }
+    }
+
+    /// Family `i`'s refinement (or its retrieved pattern, not refined), in `starts` order.
+    pub fn refined(&self, i: usize) -> &Refined {
+        &self.refined[i]
     }
 
     /// Refinement evaluations in all (for progress bars).
@@ -476,119 +449,6 @@ impl Suggester {
         }
         self.next_family().is_some()
     }
-
-    /// Every candidate, nearest first, with the refinement done so far.
-    ///
-    /// Ranking (`score`): the families are ordered by their *structure distance* (refined, else
-    /// retrieval: the bare pattern's descriptor against the photo's structure map) plus the
-    /// [`NOISE_MODEL_MARGIN`] margin. The noise model has no bare structure; it is ranked against the best
-    /// family by *texture distance* (each fitted and rendered, projected on the photo's tone
-    /// line, described): noise comes first when its texture distance is below the best family's
-    /// plus the margin. Its `score` is its texture distance moved onto the families' scale
-    /// (minus the best family's texture − score difference, minus the margin), so one sort
-    /// does both. On a photo with a dark network ([`DARK_NETWORK_SKEWNESS`]) the noise model
-    /// ranks right after the best family instead. Measured on
-    /// the synthetic round trip (72 cases): ordering the families by texture distance picked
-    /// the right one 36 times, by structure distance 43: the fitted ramp and residual noise
-    /// blur the very structure that tells families apart.
-    pub fn suggestions(&self, db: &Db) -> Vec<Suggestion> {
-        self.ranked(db, usize::MAX)
-    }
-
-    /// [`Suggester::suggestions`] with only the first `fitted` families (by score) fitted and
-    /// rendered; the others have no `distance` or `preview` until [`Suggester::fit`] fits
-    /// them. The order does not depend on the fits: the families are ordered by their
-    /// structure distance, and the noise model is placed against the best family's texture
-    /// distance, so `fitted` = 1 gives the same order as every fit (what the browser's worker
-    /// shows first; the other thumbnails follow one by one).
-    pub fn ranked(&self, db: &Db, fitted: usize) -> Vec<Suggestion> {
-        let tile = Tile::new_2d(self.opts.seed);
-        let margin = NOISE_MODEL_MARGIN * self_distance(db, &self.tt);
-        let mut out: Vec<Suggestion> = Vec::with_capacity(self.starts.len() + 1);
-        let noise = analyze_prepared(&self.small, &self.opts).params;
-        let distance = texture_distance(db, &self.tt, &self.q, &noise, &tile);
-        out.push(Suggestion {
-            name: "noise",
-            pattern: None,
-            distance: Some(distance),
-            score: 0.0,
-            retrieval_distance: 0.0,
-            refined_distance: None,
-            skipped: false,
-            preview: Some(noise),
-        });
-        let complete = self.pending().is_empty();
-        let mut families: Vec<Suggestion> = self
-            .starts
-            .iter()
-            .zip(&self.refined)
-            .map(|(starts, (p, refined_distance, swapped))| {
-                let m = &starts[0];
-                let mut p = p.clone();
-                // In two steps, as the fit scales it (the same bits as before the fits
-                // were split from the order).
-                p.scale *= self.per_px;
-                p.scale *= self.texels_per_small;
-                Suggestion {
-                    name: p.kind.name(),
-                    pattern: Some((p, *swapped)),
-                    distance: None,
-                    score: refined_distance.unwrap_or(m.distance) + margin,
-                    retrieval_distance: m.distance,
-                    refined_distance: *refined_distance,
-                    skipped: complete && refined_distance.is_none(),
-                    preview: None,
-                }
-            })
-            .collect();
-        families.sort_by(|a, b| a.score.total_cmp(&b.score));
-        // The first `fitted` families fitted and rendered: independent, so in parallel on
-        // native.
-        let n = fitted.min(families.len());
-        let fits =
-            crate::parallel::map_in_order(&families[..n], |f| self.fit_family(db, &tile, f.name));
-        for (f, (params, distance)) in families.iter_mut().zip(fits) {
-            f.distance = Some(distance);
-            f.preview = Some(params);
-        }
-        out.extend(families);
-        out[0].score = match out.get(1) {
-            // Right after the best family: still offered, never first.
-            Some(best) if self.dark_network => best.score.next_up(),
-            Some(best) => {
-                let best_distance = best.distance.expect("the best family is fitted");
-                distance - (best_distance - best.score) - margin
-            }
-            None => distance,
-        };
-        out.sort_by(|a, b| a.score.total_cmp(&b.score));
-        out
-    }
-
-    /// Fits `s` (a family of [`Suggester::ranked`] not fitted yet) as the ranking fits its
-    /// first families; nothing for a fitted one.
-    pub fn fit(&self, db: &Db, s: &mut Suggestion) {
-        if s.preview.is_some() {
-            return;
-        }
-        let (params, distance) = self.fit_family(db, &Tile::new_2d(self.opts.seed), s.name);
-        s.distance = Some(distance);
-        s.preview = Some(params);
-    }
-
-    /// Family `name`'s refined pattern fitted on the reduced photo, and its texture distance.
-    fn fit_family(&self, db: &Db, tile: &Tile, name: &str) -> (Params, f32) {
-        let (p, _, swapped) = self
-            .refined
-            .iter()
-            .find(|(p, _, _)| p.kind.name() == name)
-            .expect("a family of this suggester");
-        let mut p = p.clone();
-        p.scale *= self.per_px;
-        let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, tile).params;
-        let distance = texture_distance(db, &self.tt, &self.q, &fitted, tile);
-        (fitted, distance)
-    }
 }
 
 /// Entries per wanted start that [`diverse_starts`] chooses from.
@@ -640,22 +500,9 @@ fn db_tile() -> &'static Tile {
     TILE.get().expect("the tile was set")
 }
 
-/// The descriptor distance between the top and bottom halves of the photo's structure map
-/// (each described from its centre square): how much the photo differs from itself.
-pub fn self_distance(db: &Db, tt: &TwoTone) -> f32 {
-    let (w, h) = (tt.width as usize, tt.height as usize);
-    let half = h / 2;
-    let top = &tt.structure[..w * half];
-    let bottom = &tt.structure[(h - half) * w..];
-    db.distance(
-        &describe(&descriptor_image(top, w, half)),
-        &describe(&descriptor_image(bottom, w, half)),
-    )
-}
-
 /// The analysis of an analysis-size photo with the chosen model: the noise model, or the
 /// pattern fitted at full size. Also returns the ranked suggestions (empty unless `Auto` or a
-/// family was asked for).
+/// family was asked for; the families fitted as `refinement.fitted` says).
 pub fn analyze_with_model(
     db: &Db,
     photo: &Photo,
@@ -679,7 +526,7 @@ pub fn analyze_with_model_progress(
     if choice == ModelChoice::Noise {
         return (analyze_prepared(photo, opts), Vec::new());
     }
-    let suggestions = suggest_with(db, photo, opts, refinement, progress);
+    let suggestions = rank_with(db, photo, opts, refinement, refinement.fitted, progress);
     let pick = suggestions.iter().find(|s| match choice {
         ModelChoice::Auto => true,
         ModelChoice::Kind(k) => s.name == k.name(),

@@ -19,12 +19,14 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the noise tile was last changed (the plane tile 512
-/// coefficients wide: 338 of 432; 335 with the 128-wide tile, drawn in the frequency domain or
-/// by Cook & DeRose's construction). Every third case alone gave 112 of 144 (77.8 %). The test
-/// guards against a regression: the rate plus two standard errors must reach it. (The two-tone
-/// paper's 90 % is rejected by these cases: 78 % ± 2.)
-const MEASURED_RATE: f32 = 338.0 / 432.0;
+/// The rate measured on all 432 cases when the ranking last changed: 316 of 432 (73.1 %) since
+/// the three families nearest by structure are ordered by their fitted renders
+/// (`retrieve::TEXTURE_WEIGHT`), which put a labelled family first on more of the development
+/// set's real photos (35 → 42 of 100) and on fewer of these bare patterns (338 of 432 with the
+/// families ordered by structure distance alone; perlin, turbulence and ridged, fitted, come close
+/// to one another's textures). The test guards against a regression: the rate plus two standard
+/// errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
+const MEASURED_RATE: f32 = 316.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
@@ -172,12 +174,12 @@ fn the_refinement_skips_only_families_that_cannot_reach_the_top_three() {
     println!("{} of {} families refined", refined.len(), families.len());
 }
 
-/// The ranking that fits only the best family (the browser's worker shows it first) has the
-/// full ranking's order and scores, and each other family fitted afterwards equals the full
-/// ranking's fit, bit for bit.
+/// The ranking that fits only the families that decide the order (the browser's worker shows
+/// it first) has the full ranking's order and scores, and each other family fitted afterwards
+/// equals the full ranking's fit, bit for bit.
 #[test]
-fn fitting_the_best_family_alone_gives_the_full_ranking() {
-    use proctex::retrieve::Suggester;
+fn fitting_the_families_that_order_the_list_alone_gives_the_full_ranking() {
+    use proctex::retrieve::{RENDER_ORDERED, Suggester};
     let db = Db::shipped();
     let opts = Options::default();
     for name in ["megaglest_stonebricks_256.png", "scorched3d_gravel_256.png"] {
@@ -191,7 +193,7 @@ fn fitting_the_best_family_alone_gives_the_full_ranking() {
             .filter(|r| r.preview.is_some())
             .map(|r| r.name)
             .collect();
-        assert_eq!(fitted.len(), 2, "{name}: {fitted:?}");
+        assert_eq!(fitted.len(), 1 + RENDER_ORDERED, "{name}: {fitted:?}");
         assert!(fitted.contains(&"noise"), "{name}: {fitted:?}");
         for row in &mut first {
             s.fit(db, row);

@@ -198,7 +198,8 @@ test('benchmark: model retrieval for a 256² query in WASM, and what refinement 
     out(`${sample}, its top-left 256² crop, trivial shader: retrieval → the list with its best row fitted and ` +
         `adopted ${t.ms.toFixed(0)} ms with ${t.helpers} helper workers (target 3000 ms: ratio ` +
         `${(t.ms / 3000).toFixed(2)}); the refinement ${t.refinedMs.toFixed(0)} ms, then the ranking and the best ` +
-        `row's final fit ${(t.ms - t.refinedMs).toFixed(0)} ms (${t.fitHelped} of ${t.fitTasks} tasks by the helpers); ` +
+        `row's final fit ${(t.ms - t.refinedMs).toFixed(0)} ms (${t.orderHelped} of the ${t.orderTasks} fits that order ` +
+        `the list and ${t.fitHelped} of ${t.fitTasks} final-fit tasks by the helpers); ` +
         `first: ${t.rows[0].name}`);
   }
   await page.evaluate(() => window.proctex.setFlatShader(false));

@@ -53,8 +53,8 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   expect(['brick', 'planks', 'grid']).toContain(s.suggestions[0].name);
   expect(s.suggestions.map((r) => r.name)).toContain('noise');
   expect(s.suggestions.length).toBe(10);
-  // The list came with its best family fitted; every other row's fit (texture distance,
-  // thumbnail) followed it into the app.
+  // The list came with the families that order it fitted; every other row's fit (texture
+  // distance, thumbnail) followed it into the app.
   expect(s.suggestions.every((r) => typeof r.distance === 'number')).toBe(true);
   expect(s.adopted).toBe(0);
   expect(s.error).toBeNull();
@@ -65,6 +65,10 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   const t = await page.evaluate(() => window.proctex.lastSuggestions());
   expect(t.fitTasks).toBeGreaterThan(1);
   if (t.helpers > 0) expect(t.fitHelped).toBeGreaterThan(0);
+  // So did the fits of the three families nearest by structure, whose renders order the list
+  // (this worker fitted the noise model meanwhile).
+  expect(t.orderTasks).toBe(3);
+  if (t.helpers > 0) expect(t.orderHelped).toBeGreaterThan(0);
   const cli = JSON.parse(execFileSync(CLI, ['analyze', path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png'),
     '--json'], { stdio: ['ignore', 'pipe', 'ignore'] }).toString());
   expectClose(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model, cli.model, 'model');

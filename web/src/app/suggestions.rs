@@ -188,9 +188,19 @@ impl ProctexApp {
                 let texture = row
                     .distance
                     .map_or("fitting…".into(), |d| format!("{d:.3}"));
+                // The noise model and the families nearest by structure come first, ordered by
+                // their fitted renders; the other families follow by structure distance
+                // (`Suggester::ranked`), so their scores are on that scale.
+                let compared = i <= proctex::retrieve::RENDER_ORDERED;
                 let mut tip = format!(
-                    "{}: score {:.3} (lower is nearer)\ntexture distance {texture}",
-                    row.name, row.score
+                    "{}: score {:.3} (lower is nearer; {})\ntexture distance {texture}",
+                    row.name,
+                    row.score,
+                    if compared {
+                        "the first models are compared by their fitted renders"
+                    } else {
+                        "after the models compared by their renders, by structure distance"
+                    }
                 );
                 if let Some(r) = row.retrieval {
                     tip += &format!("\nstructure distance: retrieval {r:.3}");

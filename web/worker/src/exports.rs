@@ -144,6 +144,43 @@ impl Suggestions {
         self.job.set_refined(i, json).map_err(js_error)
     }
 
+    /// The families whose fits order the list, once the refinement is complete: fit each
+    /// (`orderFit` here or a helper's `Refiner.orderFit`), store it (`setOrderFit`), then
+    /// `rank` uses them.
+    #[wasm_bindgen(js_name = orderFits)]
+    pub fn order_fits(&self) -> Vec<u32> {
+        self.job
+            .order_fits()
+            .into_iter()
+            .map(|i| i as u32)
+            .collect()
+    }
+
+    /// Family `i`'s refinement as JSON, for a helper's `Refiner.orderFit`.
+    #[wasm_bindgen(js_name = refinedOf)]
+    pub fn refined_of(&self, i: usize) -> String {
+        self.job.refined_of(i)
+    }
+
+    /// Fits family `i` here without storing it; its fit as JSON for `setOrderFit`.
+    #[wasm_bindgen(js_name = orderFit)]
+    pub fn order_fit(&self, i: usize) -> Result<String, JsValue> {
+        Ok(self.job.order_fit(database()?, i))
+    }
+
+    /// Stores family `i`'s fit (JSON from `orderFit` here or a helper's `Refiner.orderFit`).
+    #[wasm_bindgen(js_name = setOrderFit)]
+    pub fn set_order_fit(&mut self, i: usize, json: &str) -> Result<(), JsValue> {
+        self.job.set_order_fit(i, json).map_err(js_error)
+    }
+
+    /// Fits the noise model for `rank` (while helpers fit families).
+    #[wasm_bindgen(js_name = fitNoise)]
+    pub fn fit_noise(&mut self) -> Result<(), JsValue> {
+        self.job.fit_noise(database()?);
+        Ok(())
+    }
+
     /// Ranks the candidates (refined so far) and returns the rows as JSON.
     pub fn rank(&mut self) -> Result<String, JsValue> {
         let rows = self.job.rank(database()?);
@@ -449,6 +486,15 @@ impl Refiner {
     /// Family `i`'s refinement as JSON (for `Suggestions.setRefined`).
     pub fn refine(&self, i: usize) -> Result<String, JsValue> {
         Ok(self.inner.refine(database()?, i))
+    }
+
+    /// Family `i`'s fit with `refined` (`Suggestions.refinedOf`) as its refinement, as JSON for
+    /// `Suggestions.setOrderFit`.
+    #[wasm_bindgen(js_name = orderFit)]
+    pub fn order_fit(&mut self, i: usize, refined: &str) -> Result<String, JsValue> {
+        self.inner
+            .order_fit(database()?, i, refined)
+            .map_err(js_error)
     }
 
     /// Builds the final fit of `pattern` (`Suggestions.rowPattern`) ahead of its tasks, while

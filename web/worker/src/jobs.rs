@@ -304,10 +304,42 @@ impl SuggestJob {
         refined_json(&self.suggester, db, i)
     }
 
+    /// The families whose fits order the list (`retrieve::Suggester::render_ordered`): fit
+    /// each here ([`SuggestJob::order_fit`]) or in a helper ([`Refiner::order_fit`]), store it
+    /// ([`SuggestJob::set_order_fit`]), then [`SuggestJob::rank`] uses the stored fits.
+    pub fn order_fits(&self) -> Vec<usize> {
+        self.suggester.render_ordered()
+    }
+
+    /// Family `i`'s refinement as JSON: what a helper's [`Refiner::order_fit`] fits.
+    pub fn refined_of(&self, i: usize) -> String {
+        serde_json::to_string(self.suggester.refined(i)).expect("patterns serialise")
+    }
+
+    /// Fits family `i` here without storing it: its fit as JSON (for
+    /// [`SuggestJob::set_order_fit`]).
+    pub fn order_fit(&self, db: &Db, i: usize) -> String {
+        serde_json::to_string(&self.suggester.fit_refined(db, i)).expect("params serialise")
+    }
+
+    /// Stores family `i`'s fit (JSON from [`SuggestJob::order_fit`] or a helper's
+    /// [`Refiner::order_fit`]).
+    pub fn set_order_fit(&mut self, i: usize, json: &str) -> Result<(), serde_json::Error> {
+        let fit: proctex::retrieve::Fit = serde_json::from_str(json)?;
+        self.suggester.set_fitted(i, fit);
+        Ok(())
+    }
+
+    /// Fits the noise model and stores it, for [`SuggestJob::rank`] (which fits it otherwise).
+    pub fn fit_noise(&mut self, db: &Db) {
+        let fit = self.suggester.fit_noise(db);
+        self.suggester.set_noise_fit(fit);
+    }
+
     /// Ranks the candidates with the refinement done so far (the families not refined keep
-    /// their retrieved pattern). Only the noise model and the best family are fitted: they
-    /// decide the order (`retrieve::Suggester::ranked`); [`SuggestJob::fit_next`] fits the
-    /// other rows afterwards, one per call.
+    /// their retrieved pattern). Only the noise model and the families nearest by structure are
+    /// fitted: they decide the order (`retrieve::Suggester::ranked`); [`SuggestJob::fit_next`]
+    /// fits the other rows afterwards, one per call.
     pub fn rank(&mut self, db: &Db) -> Vec<SuggestionRow> {
         self.ranked = self.suggester.ranked(db, 1);
         (0..self.ranked.len()).map(|i| self.row(i)).collect()
@@ -550,6 +582,20 @@ impl Refiner {
     /// Family `i`'s refinement as JSON (for [`SuggestJob::set_refined`]).
     pub fn refine(&self, db: &Db, i: usize) -> String {
         refined_json(&self.suggester, db, i)
+    }
+
+    /// Family `i`'s fit as JSON (for [`SuggestJob::set_order_fit`]), with `refined_json`
+    /// ([`SuggestJob::refined_of`]) as its refinement: the same as the job's own
+    /// [`SuggestJob::order_fit`].
+    pub fn order_fit(
+        &mut self,
+        db: &Db,
+        i: usize,
+        refined_json: &str,
+    ) -> Result<String, serde_json::Error> {
+        let r: proctex::retrieve::Refined = serde_json::from_str(refined_json)?;
+        self.suggester.set_refined(i, r);
+        Ok(serde_json::to_string(&self.suggester.fit_refined(db, i)).expect("params serialise"))
     }
 
     /// Builds the final fit of `pattern_json` ([`SuggestJob::row_pattern`]) ahead of its tasks.

@@ -52,7 +52,12 @@ folds for cross-validation).";
 pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut o = Options::default();
     let mut model = Choice::Model(ModelChoice::Noise);
-    let mut refinement = Refinement::default();
+    // Every family fitted: the records keep each family's texture distance (the offline
+    // cross-validations reorder the families by it).
+    let mut refinement = Refinement {
+        fitted: usize::MAX,
+        ..Refinement::default()
+    };
     let mut files = Vec::new();
     let mut against = None;
     let (mut nseeds, mut json) = (None, false);
@@ -70,7 +75,12 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
             "--fold" => fold = Some(fold_of_arg(&a.value(&arg)?)?),
             "--model" => model = choice(&mut a, &arg)?,
             "--against" => against = Some(choice(&mut a, &arg)?),
-            "--refine" => refinement = refinement_of(a.parsed(&arg)?),
+            "--refine" => {
+                refinement = Refinement {
+                    fitted: usize::MAX,
+                    ..refinement_of(a.parsed(&arg)?)
+                }
+            }
             "--iterations" => raster.iterations = a.parsed(&arg)?,
             "--scales" => raster.scales = a.parsed(&arg)?,
             "--orientations" => raster.orientations = a.parsed(&arg)?,

@@ -298,8 +298,15 @@ fn parse_model_choice(flag: &str, v: &str, also: &str) -> Result<ModelChoice> {
 fn ranking_text(suggestions: &[Suggestion]) -> String {
     let mut ranking = String::new();
     if !suggestions.is_empty() {
-        ranking += "candidates, nearest first (score: a pattern's structure distance + margin; \
-                    the noise model's texture distance against the best pattern's):\n";
+        ranking += &format!(
+            "candidates, nearest first (score: for the {n} patterns nearest by structure, \
+             {s:.1} × structure + {t:.1} × texture distance + margin, and the noise model's \
+             texture distance against the best of them; then the other patterns by structure \
+             distance + margin):\n",
+            n = proctex::retrieve::RENDER_ORDERED,
+            s = 1.0 - proctex::retrieve::TEXTURE_WEIGHT,
+            t = proctex::retrieve::TEXTURE_WEIGHT,
+        );
         for s in suggestions {
             let texture = s
                 .distance

@@ -144,10 +144,14 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
     let side = THUMB_SIDE as usize;
     let thumbs = job.thumbnails();
     assert_eq!(thumbs.len(), rows.len() * side * side * 4);
-    // The noise model and the best family are fitted at once, the others on request: then
-    // each row is the CLI's, and its thumbnail appears.
+    // The noise model and the families that order the list are fitted at once, the others on
+    // request: then each row is the CLI's, and its thumbnail appears.
     let fitted: Vec<bool> = rows.iter().map(|r| r.distance.is_some()).collect();
-    assert_eq!(fitted.iter().filter(|&&f| f).count(), 2, "{rows:?}");
+    assert_eq!(
+        fitted.iter().filter(|&&f| f).count(),
+        1 + proctex::retrieve::RENDER_ORDERED,
+        "{rows:?}"
+    );
     let opaque = |t: &[u8]| t.chunks_exact(4).all(|px| px[3] == 255);
     for (i, t) in thumbs.chunks_exact(side * side * 4).enumerate() {
         assert_eq!(opaque(t), fitted[i], "row {i}");
@@ -174,7 +178,8 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
 }
 
 /// The page's helper workers: families refined by a `Refiner` built from the job's prepared
-/// photo, stored in any order, rank exactly as the job's own steps do.
+/// photo, stored in any order, and the families that order the list fitted there, rank exactly
+/// as the job's own steps do.
 #[test]
 fn families_refined_elsewhere_in_any_order_rank_the_same() {
     let (rgba, w, h) = sample();
@@ -183,7 +188,7 @@ fn families_refined_elsewhere_in_any_order_rank_the_same() {
     while stepped.step(db) {}
     let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
     let (px, pw, ph) = job.prepared();
-    let helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+    let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
     // Round by round, each round's families in reverse order, alternately here and there.
     loop {
         let round = job.pending();
@@ -200,15 +205,32 @@ fn families_refined_elsewhere_in_any_order_rank_the_same() {
         }
     }
     assert_eq!(job.progress(), stepped.progress());
+    // The families that order the list fitted alternately there and here, the noise model
+    // here, before the ranking: the rows of fitting them all in the ranking, their texture
+    // distances included.
+    let order = job.order_fits();
+    assert_eq!(order.len(), proctex::retrieve::RENDER_ORDERED);
+    assert_eq!(order, stepped.order_fits());
+    for (k, &i) in order.iter().enumerate() {
+        let json = if k % 2 == 0 {
+            helper.order_fit(db, i, &job.refined_of(i)).unwrap()
+        } else {
+            job.order_fit(db, i)
+        };
+        job.set_order_fit(i, &json).unwrap();
+    }
+    job.fit_noise(db);
     let (a, b) = (stepped.rank(db), job.rank(db));
     assert_eq!(a.len(), b.len());
     for (x, y) in a.iter().zip(&b) {
         assert_eq!(
-            (&x.name, x.score, x.refined, x.skipped),
-            (&y.name, y.score, y.refined, y.skipped)
+            (&x.name, x.score, x.distance, x.refined, x.skipped),
+            (&y.name, y.score, y.distance, y.refined, y.skipped)
         );
     }
     assert!(job.set_refined(0, "not json").is_err());
+    assert!(job.set_order_fit(0, "not json").is_err());
+    assert!(helper.order_fit(db, 0, "not json").is_err());
     assert!(Refiner::new(db, &px[1..], pw, ph, 1).is_err());
 }
 
