@@ -80,7 +80,7 @@ dbReady.catch(() => {}); // reported per photo, below
 // Tasks are `{ kind: 'refine', family }`; once the refinement is over (`finished`),
 // `{ kind: 'order', family }`: the fits of the families nearest by structure, whose renders
 // order the list (`orderFits()`), while this worker fits the noise model (`ordering`: { noise,
-// helped, done }); once the list is ranked and a model family is its best, `{ kind: 'fit',
+// stored, helped, done }); once the list is ranked and a model family is its best, `{ kind: 'fit',
 // index, gen }`: the final fit of the adopted model (step 6 of
 // the structured fit) in rounds of tasks (`fitPending()`), shared the same way; `fit`: its state
 // ({ gen, pattern, tasks, helped, done, finish }) until `finish` sends its report: with the list
@@ -323,7 +323,7 @@ function suggestStep(s) {
   clearTimeout(s.budgetTimer);
   s.refinedMs = performance.now() - s.t0;
   // The fits that order the list, in tasks shared with the helpers; the noise model here first.
-  s.ordering = { noise: false, helped: 0, done: false };
+  s.ordering = { noise: false, stored: 0, helped: 0, done: false };
   s.todo = Array.from(s.job.orderFits(), (family) => ({ kind: 'order', family }));
   s.orderTasks = s.todo.length;
   s.waiting = false;
@@ -345,11 +345,11 @@ function orderStep(s) {
   if (s.todo.length > 0) {
     const family = s.todo.shift().family;
     s.job.setOrderFit(family, s.job.orderFit(family));
-    o.stored = (o.stored ?? 0) + 1;
+    o.stored++;
     scheduleStep(s);
     return;
   }
-  if ((o.stored ?? 0) + o.helped < s.orderTasks) {
+  if (o.stored + o.helped < s.orderTasks) {
     s.waiting = true; // a helper's reply wakes it up
     return;
   }
@@ -452,8 +452,8 @@ function postSuggestions(s, rows, thumbs, best) {
 }
 
 // The rows that the ranking did not fit (every family but those nearest by structure: the
-// order does not depend on them), one per macrotask, so that a new photo, a crop or a click is not kept waiting;
-// each row's texture distance and thumbnail follow the list.
+// order does not depend on them), one per macrotask, so that a new photo, a crop or a click is
+// not kept waiting; each row's texture distance and thumbnail follow the list.
 function fitRows(s) {
   setTimeout(() => {
     queue = queue.then(() => {
