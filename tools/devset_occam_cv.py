@@ -48,8 +48,11 @@ def patches(photos, current):
             noise = next(r for r in rank if r["name"] == "noise")
             fams = [r for r in rank if r["name"] != "noise"]
             best = min(fams, key=lambda r: r["score"])
-            struct = best["refined"] if best["refined"] is not None else best["retrieval"]
-            margin = best["score"] - struct
+            # The family farthest by structure scores its structure distance plus the margin,
+            # whichever order ranked the list (the nearest ones may be reordered by a blend).
+            structure = [r["refined"] if r["refined"] is not None else r["retrieval"] for r in fams]
+            far = max(range(len(fams)), key=lambda j: structure[j])
+            margin = fams[far]["score"] - structure[far]
             family_ok = (c["chosen"] == best["name"]
                          and patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
             out.append(dict(file=e["file"], category=e["category"], labels=e["families"] or [],
