@@ -63,6 +63,26 @@ def tally(pts, w, k, margin=OCCAM, dark=DARK_NETWORK_SKEWNESS):
     return labelled, len(s), served, len(t)
 
 
+def cross_validate(pts, candidates, tally_at, prefer, baseline):
+    """Each of the FOLDS folds held out in turn: the candidate chosen on the other folds (the
+    most structured patches labelled among those that keep ≥ 95 % of the stochastic patches
+    served; ties by `prefer(candidate, tally)`), its tally on the held-out fold and the
+    `baseline` candidate's. Returns (fold, chosen, held, base) per fold and the pooled held and
+    base tallies."""
+    folds, pooled, base = [], [0, 0, 0, 0], [0, 0, 0, 0]
+    for f in range(FOLDS):
+        train = [pt for pt in pts if fold_of(pt["file"], FOLDS) != f]
+        test = [pt for pt in pts if fold_of(pt["file"], FOLDS) == f]
+        scored = [(c, tally_at(train, c)) for c in candidates]
+        ok = [x for x in scored if x[1][2] >= 0.95 * x[1][3]] or scored
+        chosen = max(ok, key=lambda x: (x[1][0], prefer(*x)))[0]
+        held, b = tally_at(test, chosen), tally_at(test, baseline)
+        pooled = [a + h for a, h in zip(pooled, held)]
+        base = [a + h for a, h in zip(base, b)]
+        folds.append((f, chosen, held, b))
+    return folds, pooled, base
+
+
 def main():
     args = sys.argv[1:]
     k = int(args[args.index("--k") + 1]) if "--k" in args else 9
@@ -79,22 +99,14 @@ def main():
     for w in grid:
         lab, ns, served, nt = tally(pts, w, k)
         print(f"  w {w:4.2f}: structured labelled {lab}/{ns}, stochastic served {served}/{nt}")
-    pooled, base = [0, 0, 0, 0], [0, 0]
-    for f in range(FOLDS):
-        train = [pt for pt in pts if fold_of(pt["file"], FOLDS) != f]
-        test = [pt for pt in pts if fold_of(pt["file"], FOLDS) == f]
-        scored = [(w, *tally(train, w, k)) for w in grid]
-        ok = [x for x in scored if x[3] >= 0.95 * x[4]] or scored
-        w = max(ok, key=lambda x: (x[1], -x[0]))[0]
-        held = tally(test, w, k)
-        b = tally(test, 0.0, k)
-        pooled = [a + h for a, h in zip(pooled, held)]
-        base = [base[0] + b[0], base[1] + b[2]]
+    folds, pooled, base = cross_validate(pts, grid, lambda ps, w: tally(ps, w, k),
+                                         lambda w, _: -w, 0.0)
+    for f, w, held, b in folds:
         print(f"fold {f}: w chosen on the others {w:.2f}; held out structured labelled "
               f"{held[0]}/{held[1]} (w = 0: {b[0]}), stochastic served {held[2]}/{held[3]} "
               f"(w = 0: {b[2]})")
     print(f"held-out folds pooled: structured labelled {pooled[0]}/{pooled[1]} (w = 0: "
-          f"{base[0]}), stochastic served {pooled[2]}/{pooled[3]} (w = 0: {base[1]})")
+          f"{base[0]}), stochastic served {pooled[2]}/{pooled[3]} (w = 0: {base[2]})")
 
 
 if __name__ == "__main__":

@@ -19,10 +19,8 @@ import json
 import sys
 
 from devset_family_order_cv import (DARK_NETWORK_SKEWNESS, OCCAM, RENDER_ORDERED, TEXTURE_WEIGHT,
-                                    choose, patches, tally)
-from devset_occam_cv import fold_of
+                                    choose, cross_validate, patches, tally)
 
-FOLDS = 4
 MARGINS = [x / 20 for x in range(21)]
 THRESHOLDS = [-2.0 + x * 0.05 for x in range(41)] + [-9.0]  # −9: no dark network
 
@@ -34,21 +32,16 @@ def main():
     agree = sum(choose(pt, *order) == pt["chosen"] for pt in pts)
     print(f"{len(photos)} photos, {len(pts)} patches; the product's constants reproduce "
           f"{agree}/{len(pts)} choices")
-    pooled, base = [0, 0, 0, 0], [0, 0]
-    for f in range(FOLDS):
-        train = [pt for pt in pts if fold_of(pt["file"], FOLDS) != f]
-        test = [pt for pt in pts if fold_of(pt["file"], FOLDS) == f]
-        scored = [(m, d, *tally(train, *order, m, d)) for m in MARGINS for d in THRESHOLDS]
-        ok = [x for x in scored if x[4] >= 0.95 * x[5]] or scored
-        m, d = max(ok, key=lambda x: (x[2], x[4], -abs(x[0] - OCCAM)))[:2]
-        held, b = tally(test, *order, m, d), tally(test, *order)
-        pooled = [a + h for a, h in zip(pooled, held)]
-        base = [base[0] + b[0], base[1] + b[2]]
+    pairs = [(m, d) for m in MARGINS for d in THRESHOLDS]
+    folds, pooled, base = cross_validate(
+        pts, pairs, lambda ps, c: tally(ps, *order, *c),
+        lambda c, t: (t[2], -abs(c[0] - OCCAM)), (OCCAM, DARK_NETWORK_SKEWNESS))
+    for f, (m, d), held, b in folds:
         print(f"fold {f}: margin {m:.2f}, threshold {d:.2f} chosen on the others; held out "
               f"structured labelled {held[0]}/{held[1]} (product {b[0]}), stochastic served "
               f"{held[2]}/{held[3]} (product {b[2]}; threshold {DARK_NETWORK_SKEWNESS})")
     print(f"held-out folds pooled: structured labelled {pooled[0]}/{pooled[1]} (product "
-          f"{base[0]}), stochastic served {pooled[2]}/{pooled[3]} (product {base[1]})")
+          f"{base[0]}), stochastic served {pooled[2]}/{pooled[3]} (product {base[2]})")
 
 
 if __name__ == "__main__":

@@ -341,7 +341,7 @@ impl SuggestJob {
     /// fitted: they decide the order (`retrieve::Suggester::ranked`); [`SuggestJob::fit_next`]
     /// fits the other rows afterwards, one per call.
     pub fn rank(&mut self, db: &Db) -> Vec<SuggestionRow> {
-        self.ranked = self.suggester.ranked(db, 1);
+        self.ranked = self.suggester.ranked(db, proctex::retrieve::RENDER_ORDERED);
         (0..self.ranked.len()).map(|i| self.row(i)).collect()
     }
 
