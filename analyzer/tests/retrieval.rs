@@ -135,6 +135,25 @@ fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
     assert_eq!(ranked[0].name, "noise");
 }
 
+/// A photo no larger than the ranking's copy is ranked unreduced: the noise model's fit there is
+/// the analysis that choosing it runs, and the automatic analysis uses it as it is: the same
+/// analysis as the noise model's own, and the ranking's noise row shows its params.
+#[test]
+fn the_noise_model_chosen_on_a_small_photo_is_its_own_analysis() {
+    use proctex::analyze::analyze_prepared;
+    use proctex::retrieve::{ModelChoice, RANK_SIZE, analyze_with_model};
+    let db = Db::shipped();
+    let opts = Options::default();
+    let gravel = common::dev_quadrant("scorched3d_gravel_256.png");
+    assert!(gravel.width.max(gravel.height) <= RANK_SIZE);
+    let (auto, ranked) =
+        analyze_with_model(db, &gravel, &opts, ModelChoice::Auto, Refinement::default());
+    assert_eq!(ranked[0].name, "noise");
+    let own = analyze_prepared(&gravel, &opts);
+    assert_eq!(auto, own);
+    assert_eq!(ranked[0].preview.as_ref(), Some(&own.params));
+}
+
 /// The refinement's bound: the first three families by retrieval distance are refined; every
 /// family left unrefined is one whose retrieval distance times its family's refinement reach is
 /// above the third-best refined distance (it could not have entered the top three), and is

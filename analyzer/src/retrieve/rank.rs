@@ -270,6 +270,21 @@ impl Suggester {
         (noise, distance)
     }
 
+    /// The noise model's analysis of the analysed photo itself, fitted and stored as the
+    /// ranking's noise fit, when the ranking works on that photo unreduced (its longer side at
+    /// most [`super::RANK_SIZE`]): the same analysis that choosing the noise model then runs,
+    /// so it runs once. `None` (nothing stored) for a larger photo.
+    pub(super) fn fit_noise_unreduced(&mut self, db: &Db) -> Option<crate::analyze::Analysis> {
+        if !self.unreduced {
+            return None;
+        }
+        let analysis = analyze_prepared(&self.small, &self.opts);
+        let tile = Tile::new_2d(self.opts.seed);
+        let distance = texture_distance(db, &self.tt, &self.q, &analysis.params, &tile);
+        self.noise_fit = Some((analysis.params.clone(), distance));
+        Some(analysis)
+    }
+
     /// Fits `s` (a family of [`Suggester::ranked`] not fitted yet) as the ranking fits its
     /// first families; nothing for a fitted one.
     pub fn fit(&self, db: &Db, s: &mut Suggestion) {
