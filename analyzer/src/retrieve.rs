@@ -219,27 +219,21 @@ fn rank_keeping_noise(
     let total = s.evaluations();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let stop = std::sync::atomic::AtomicBool::new(false);
-    let count = |_: usize, _: usize| {
-        use std::sync::atomic::Ordering::Relaxed;
-        if stop.load(Relaxed) {
-            return false;
-        }
-        let d = done.fetch_add(1, Relaxed) + 1;
-        if !progress(d.min(total), total) {
-            stop.store(true, Relaxed);
-            return false;
-        }
-        true
+    let one = |s: &Suggester, i: usize| {
+        s.refine_family(db, i, &mut |_, _| {
+            use std::sync::atomic::Ordering::Relaxed;
+            if stop.load(Relaxed) {
+                return false;
+            }
+            let d = done.fetch_add(1, Relaxed) + 1;
+            if !progress(d.min(total), total) {
+                stop.store(true, Relaxed);
+                return false;
+            }
+            true
+        })
     };
-    // Round by round ([`Suggester::pending`]). On native every start of a round's families at
-    // once: a family's two starts are independent runs, and with the families as the tasks a
-    // round of three on two threads left one thread with a family's work alone (the renders
-    // inside it run on both). The same analysis (the worker's tests compare it with the steps).
-    // Measured with step 6's tasks balanced the same way ([`crate::structure::fit_structured`]),
-    // the brick sample's 256² crop analysed warm, old and new alternated, median of six each:
-    // 2.14 → 2.01 s and 2.34 → 1.89 s while the machine was busy, 1.66 → 1.62, 1.75 → 1.67,
-    // 1.68 → 2.01, 1.97 → 1.93, 1.91 → 1.93 s when it was quieter: a gain within this machine's
-    // noise when both threads are free, kept because it never waits on one long task.
+    // Round by round ([`Suggester::pending`]), each round's families in parallel on native.
     loop {
         let round = s.pending();
         if round.is_empty() || stop.load(std::sync::atomic::Ordering::Relaxed) {
@@ -247,27 +241,11 @@ fn rank_keeping_noise(
         }
         #[cfg(not(target_arch = "wasm32"))]
         let refined: Vec<Refined> = {
-            let runs: Vec<(usize, usize)> = round
-                .iter()
-                .flat_map(|&i| (0..s.starts[i].len()).map(move |j| (i, j)))
-                .collect();
-            let mut runs = crate::parallel::map_in_order(&runs, |&(i, j)| {
-                s.refine_start(db, i, j, &mut count.clone())
-            })
-            .into_iter();
-            round
-                .iter()
-                .map(|&i| {
-                    let mine: Vec<_> = runs.by_ref().take(s.starts[i].len()).collect();
-                    s.best_start(i, mine)
-                })
-                .collect()
+            use rayon::prelude::*;
+            round.par_iter().map(|&i| one(&s, i)).collect()
         };
         #[cfg(target_arch = "wasm32")]
-        let refined: Vec<Refined> = round
-            .iter()
-            .map(|&i| s.refine_family(db, i, &mut count.clone()))
-            .collect();
+        let refined: Vec<Refined> = round.iter().map(|&i| one(&s, i)).collect();
         for (&i, r) in round.iter().zip(refined) {
             s.set_refined(i, r);
         }
@@ -452,55 +430,33 @@ impl Suggester {
         i: usize,
         step: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Refined {
+        let starts = &self.starts[i];
         let budget = self.refinement.evaluations;
-        let mut runs = Vec::new();
+        let share = budget / starts.len();
+        let tile = db_tile();
+        let mut best: Option<Refined> = None;
         let mut offset = 0;
-        for j in 0..self.starts[i].len() {
+        for m in starts {
+            let qm = if m.swapped {
+                self.q.swapped()
+            } else {
+                self.q.clone()
+            };
             let mut stopped = false;
-            let r = self.refine_start(db, i, j, &mut |done, _| {
+            let r = refine(db, &qm, &m.pattern, share, tile, &mut |done, _| {
                 let go = step(offset + done, budget);
                 stopped |= !go;
                 go
             });
             offset += r.evaluations;
-            runs.push(r);
-            if stopped {
-                break;
-            }
-        }
-        self.best_start(i, runs)
-    }
-
-    /// Start `j` of family `i` refined with its share of the family's evaluations:
-    /// independent of the other starts, so [`rank_with`] runs every start of a round at once.
-    /// `step(done, share)` after each evaluation, as [`refine`] calls it.
-    pub fn refine_start(
-        &self,
-        db: &Db,
-        i: usize,
-        j: usize,
-        step: &mut dyn FnMut(usize, usize) -> bool,
-    ) -> crate::refine::Refined {
-        let m = &self.starts[i][j];
-        let share = self.refinement.evaluations / self.starts[i].len();
-        let qm = if m.swapped {
-            self.q.swapped()
-        } else {
-            self.q.clone()
-        };
-        refine(db, &qm, &m.pattern, share, db_tile(), step)
-    }
-
-    /// Family `i`'s refinement from its starts' runs (in start order; a run per start, or
-    /// fewer when the refinement was stopped): the nearest, the first of equal ones.
-    fn best_start(&self, i: usize, runs: Vec<crate::refine::Refined>) -> Refined {
-        let mut best: Option<Refined> = None;
-        for (r, m) in runs.into_iter().zip(&self.starts[i]) {
             if best
                 .as_ref()
                 .is_none_or(|b| b.1.is_some_and(|d| r.distance < d))
             {
                 best = Some((r.pattern, Some(r.distance), m.swapped));
+            }
+            if stopped {
+                break;
             }
         }
         best.expect("every family has a start")

@@ -265,9 +265,15 @@ impl Suggester {
     }
 
     fn fit_noise_with(&self, db: &Db, tile: &Tile) -> Fit {
-        let noise = analyze_prepared(&self.small, &self.opts).params;
-        let distance = texture_distance(db, &self.tt, &self.q, &noise, tile);
-        (noise, distance)
+        let (analysis, distance) = self.noise_analysis(db, tile);
+        (analysis.params, distance)
+    }
+
+    /// The noise model's analysis of the reduced photo, and its texture distance.
+    fn noise_analysis(&self, db: &Db, tile: &Tile) -> (crate::analyze::Analysis, f32) {
+        let analysis = analyze_prepared(&self.small, &self.opts);
+        let distance = texture_distance(db, &self.tt, &self.q, &analysis.params, tile);
+        (analysis, distance)
     }
 
     /// The noise model's analysis of the analysed photo itself, fitted and stored as the
@@ -278,9 +284,7 @@ impl Suggester {
         if !self.unreduced {
             return None;
         }
-        let analysis = analyze_prepared(&self.small, &self.opts);
-        let tile = Tile::new_2d(self.opts.seed);
-        let distance = texture_distance(db, &self.tt, &self.q, &analysis.params, &tile);
+        let (analysis, distance) = self.noise_analysis(db, &Tile::new_2d(self.opts.seed));
         self.noise_fit = Some((analysis.params.clone(), distance));
         Some(analysis)
     }

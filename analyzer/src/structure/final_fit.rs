@@ -61,45 +61,12 @@ pub fn fit_structured(
     swapped: bool,
 ) -> Analysis {
     let fit = FinalFit::new(db, photo, pattern, opts, swapped);
-    // The rougher variants' fits (steps 1–5) do not depend on the first round's choice, only
-    // their scores do: natively they run beside the first round's scores, so that the threads
-    // share ten tasks and then four short ones instead of six and then four long ones (measured
-    // with the refinement's starts, [`crate::retrieve::rank_with`]). The same analysis: the
-    // worker's tasks ([`FinalFit::variant`]) are tested against this.
-    enum Task {
-        Amplitude(usize),
-        Variant(usize),
-    }
-    enum Done {
-        Scored(Scored),
-        Fitted(VariantFit),
-    }
-    let tasks: Vec<Task> = (0..fit.amplitudes())
-        .map(Task::Amplitude)
-        .chain((1..=fit.variants()).map(Task::Variant))
-        .collect();
-    let done = crate::parallel::map_in_order(&tasks, |t| match *t {
-        Task::Amplitude(k) => Done::Scored(fit.amplitude(db, k)),
-        Task::Variant(k) => Done::Fitted(fit.variant_fit(k)),
-    });
-    let (mut first, mut fitted) = (Vec::new(), Vec::new());
-    for d in done {
-        match d {
-            Done::Scored(s) => first.push(s),
-            Done::Fitted(f) => fitted.push(f),
-        }
-    }
+    let first: Vec<usize> = (0..fit.amplitudes()).collect();
+    let first = crate::parallel::map_in_order(&first, |&k| fit.amplitude(db, k));
     let chosen = fit.chosen(&first);
-    let rest = crate::parallel::map_in_order(&fitted, |f| fit.variant_scored(db, f, chosen));
+    let rest: Vec<usize> = (1..=fit.variants()).collect();
+    let rest = crate::parallel::map_in_order(&rest, |&k| fit.variant(db, k, chosen));
     fit.finish(first.into_iter().chain(rest))
-}
-
-/// A rougher variant fitted (steps 1–5 of [`fit_structured`]), before its score.
-#[derive(Debug)]
-pub(super) struct VariantFit {
-    base: Analysis,
-    gains: [f64; 3],
-    balance: Balance,
 }
 
 /// One scored fit of step 6: its score (lower is better: the render of the user's seed against
@@ -241,36 +208,16 @@ impl FinalFit {
     /// Rougher variant `k` (1..=[`FinalFit::variants`]) fitted and scored with the first
     /// round's `chosen` amplitude (a third of the work of every amplitude each).
     pub fn variant(&self, db: &crate::db::Db, k: usize, chosen: usize) -> Scored {
-        self.variant_scored(db, &self.variant_fit(k), chosen)
-    }
-
-    /// Rougher variant `k` fitted, not yet scored: the part of [`FinalFit::variant`] that does
-    /// not depend on the first round.
-    fn variant_fit(&self, k: usize) -> VariantFit {
-        let (base, gains, balance) = fit_structured_gains(
-            &self.photo,
-            &self.candidates[k],
-            &self.opts,
-            self.swapped,
-            &self.tile,
-        );
-        VariantFit {
-            base,
-            gains,
-            balance,
-        }
-    }
-
-    /// A fitted variant scored with the first round's `chosen` amplitude.
-    fn variant_scored(&self, db: &crate::db::Db, f: &VariantFit, chosen: usize) -> Scored {
         let s = self.scoring.as_ref().expect("a second round");
-        let c = if grows(&f.gains) {
+        let (photo, opts) = (&self.photo, &self.opts);
+        let (base, gains, balance) =
+            fit_structured_gains(photo, &self.candidates[k], opts, self.swapped, &self.tile);
+        let c = if grows(&gains) {
             s.combos[chosen]
         } else {
             (0.0, false)
         };
-        let fields = fields_of(&f.base, &self.photo);
-        self.score(db, s, &f.base, &fields, f.gains, &f.balance, c)
+        self.score(db, s, &base, &fields_of(&base, photo), gains, &balance, c)
     }
 
     /// The best of the scored fits (both rounds, in task order; the first of equal scores),
