@@ -25,10 +25,8 @@
 //!    the photo's ([`fit_tone`]).
 //! 6. **Residual amplitude.** Steps 4–5 are run with the residual's amplitude grown by `g^α`
 //!    for a few `α`, `g` the factor that gives the residual the power step 4 asks of it, and
-//!    the ramp's contrast lowered by as much variance as the residual gains, each with and
-//!    without a closed-loop match of the residual's luminance bands ([`match_spectrum`]); the
-//!    candidate whose render of the user's seed is nearest the photo is kept
-//!    ([`fit_structured`]).
+//!    the ramp's contrast lowered by as much variance as the residual gains; the candidate
+//!    whose render of the user's seed is nearest the photo is kept ([`fit_structured`]).
 //!
 //! Tone swap: with `swapped`, the photo's `t` is reversed before the pairing (the pattern's
 //! `s = 0` then meets the photo's lighter tone). Which orientation fits is the retrieval's
@@ -37,10 +35,9 @@
 use crate::analyze::{Analysis, Options, analyze_prepared};
 use crate::input::Photo;
 use crate::noise::Tile;
-use crate::params::{Colour, Model, NoiseModel, Params, StructuredModel};
+use crate::params::{Colour, Model, NoiseModel, StructuredModel};
 use crate::pattern::{Pattern, PatternKind, RampStop};
 use crate::render::pattern::{ramp_rows, structure_image};
-use crate::render::{Fields, render_with_fields};
 use crate::two_tone::two_tone;
 
 mod final_fit;
@@ -142,85 +139,6 @@ fn rougher_variants(pattern: &Pattern) -> Vec<Pattern> {
         }
     }
     out
-}
-
-/// Rounds of [`match_spectrum`] in step 6's matched candidates.
-const SPECTRUM_MATCH_ROUNDS: usize = 2;
-
-/// Step 6's closed-loop spectrum match (ours): [`compensate_spectrum`] predicts the render's
-/// band powers from the analysed residual image and the ramp's uncontracted image; this
-/// measures them. `params` (a fitted structured model, no tone curve) is rendered as it is and
-/// with its residual silenced, at the photo's size with its own seed; in the residual's
-/// decorrelated channel nearest the luminance axis, band `k` of the residual then holds
-/// `R_k = P_render,k − P_ramp,k`, and is scaled towards `max(P_photo,k − P_ramp,k,
-/// P_photo,k / 20)` (factor at most 4 either way, in power 16): its weights take the shape
-/// and its amplitude (histogram knots, or the weights without histogram) the total.
-///
-/// Why: the prediction misses. The analysed residual is `photo − ramp(ŝ)` with `ŝ` the photo's
-/// own structure, whose spectrum the rendered residual (histogram-mapped noise, Lagae bands)
-/// reproduces only roughly, and the ramp contraction lowers the ramp's power after the
-/// prediction. Measured per quarter-octave ring (hacienda, one quadrant, seed 1), the fitted
-/// render was 1.0–2.1 dB short in rings 2–8 (3–10 px periods); two rounds of the match (on
-/// all three channels) left 0.1–1.1 dB. Only the luminance-like channel, because the spectrum
-/// distance is of luminance: matching all three gave the same spectrum ratios (±0.01) and
-/// worse colour ratios (rock wall 1.29 → 1.30, planks 1.11 → 1.17, old wood 1.22 → 1.27).
-/// Each `α` is tried with and without the match, and step 6's score chooses: always
-/// matching gained more spectrum (rock wall 1.16 → 1.00) but cost colour (1.12 → 1.29).
-fn match_spectrum(photo: &Photo, params: &mut Params, opts: &Options, fields: &Fields) {
-    use crate::render::View;
-    let (w, h) = (photo.width as usize, photo.height as usize);
-    let nb = crate::spectrum::num_bands(w, h);
-    let colour = params.colour;
-    // The decorrelated channel nearest the luminance axis.
-    let lum = |c: usize| {
-        let b = colour.basis[c];
-        (0.299 * b[0] + 0.587 * b[1] + 0.114 * b[2]).abs()
-    };
-    let c = (0..3)
-        .max_by(|&a, &b| lum(a).total_cmp(&lum(b)))
-        .unwrap_or(0);
-    let power =
-        |img: &Photo| channel_powers(&colour, c, &mut img.pixels.iter().copied(), w, h, opts);
-    let render = |p: &Params| {
-        render_with_fields(p, photo.width, photo.height, &View::default(), fields).to_photo()
-    };
-    let full = render(params);
-    let mut bare = params.clone();
-    if let Model::Structured(m) = &mut bare.model {
-        m.residual.weights.iter_mut().for_each(|w| w.fill(0.0));
-        m.residual.histogram.enabled = false;
-    }
-    let ramp_only = render(&bare);
-    let (p_photo, p_render, p_ramp) = (power(photo), power(&full), power(&ramp_only));
-    let Model::Structured(m) = &mut params.model else {
-        return;
-    };
-    let wc = &mut m.residual.weights[c];
-    if wc.len() != nb {
-        return;
-    }
-    let before: f64 = wc.iter().map(|&v| (v as f64).powi(2)).sum();
-    let (mut wanted, mut had) = (0.0, 0.0);
-    for k in 0..nb {
-        if wc[k] == 0.0 {
-            continue;
-        }
-        let res = (p_render[k] - p_ramp[k]).max(p_photo[k] / 100.0).max(1e-14);
-        let want = (p_photo[k] - p_ramp[k]).max(p_photo[k] / 20.0).max(1e-14);
-        let f = (want / res).sqrt().clamp(0.25, 4.0);
-        wc[k] = (wc[k] as f64 * f) as f32;
-        wanted += res * f * f;
-        had += res;
-    }
-    let after: f64 = wc.iter().map(|&v| (v as f64).powi(2)).sum();
-    if after <= 1e-20 || had <= 0.0 {
-        return;
-    }
-    let g = (before / after).sqrt();
-    wc.iter_mut().for_each(|v| *v = (*v as f64 * g) as f32);
-    let mut gain = [1.0; 3];
-    gain[c] = (wanted / had).sqrt();
-    scale_residual(&mut m.residual, gain);
 }
 
 /// The distance to another patch of the photo that a render at distance `d` from the analysed
@@ -564,8 +482,7 @@ fn compensate_spectrum(
 }
 
 /// The band powers (as the analysis estimates them: weights squared) of decorrelated channel
-/// `c` of `colour` over a `w × h` image's pixels `px`: what [`compensate_spectrum`] predicts and
-/// [`match_spectrum`] measures.
+/// `c` of `colour` over a `w × h` image's pixels `px`: what [`compensate_spectrum`] predicts.
 fn channel_powers(
     colour: &Colour,
     c: usize,
