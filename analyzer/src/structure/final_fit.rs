@@ -53,7 +53,7 @@ use crate::render::{Fields, View, render_with_fields};
 /// chosen on, it moved the structured photos' overall ratio by −0.000 ± 0.008 (spectrum +0.024
 /// ± 0.010 without it, colour −0.029 ± 0.015) and made 6 more of 208 renders speckier than
 /// the limit; on the shipped samples −0.009 ± 0.008 without it (docs/devset.md, "Step 6's
-/// spectrum match"). Removed: three of the six renders scored here, for nothing overall.
+/// spectrum match removed"). Removed: three of the six renders scored here, for nothing.
 ///
 /// `db` weighs the structure distance (the shipped database natively; the one the browser
 /// loaded there).
