@@ -110,8 +110,8 @@ struct Scoring {
     reference: Reference,
     /// The base's render fields (every amplitude of the refined pattern shares them).
     fields: Fields,
-    /// The first round: residual amplitudes `α`.
-    combos: Vec<f64>,
+    /// The first round: the residual amplitudes `α` it scores.
+    alphas: Vec<f64>,
 }
 
 impl FinalFit {
@@ -142,7 +142,7 @@ impl FinalFit {
                     structure: 1.0,
                 },
             };
-            let combos = if grows {
+            let alphas = if grows {
                 RESIDUAL_GAIN_STRENGTHS.to_vec()
             } else {
                 vec![0.0]
@@ -151,7 +151,7 @@ impl FinalFit {
                 unit,
                 reference: Reference::of(photo),
                 fields: fields_of(&base, photo),
-                combos,
+                alphas,
             }
         });
         FinalFit {
@@ -169,7 +169,7 @@ impl FinalFit {
 
     /// Tasks of the first round (0: nothing to choose; [`FinalFit::finish`] gives the base).
     pub fn amplitudes(&self) -> usize {
-        self.scoring.as_ref().map_or(0, |s| s.combos.len())
+        self.scoring.as_ref().map_or(0, |s| s.alphas.len())
     }
 
     /// Tasks of the second round: the rougher variants (numbered from 1).
@@ -191,7 +191,7 @@ impl FinalFit {
             &s.fields,
             self.gains,
             &self.balance,
-            s.combos[k],
+            s.alphas[k],
         )
     }
 
@@ -213,8 +213,16 @@ impl FinalFit {
         let (photo, opts) = (&self.photo, &self.opts);
         let (base, gains, balance) =
             fit_structured_gains(photo, &self.candidates[k], opts, self.swapped, &self.tile);
-        let c = if grows(&gains) { s.combos[chosen] } else { 0.0 };
-        self.score(db, s, &base, &fields_of(&base, photo), gains, &balance, c)
+        let alpha = if grows(&gains) { s.alphas[chosen] } else { 0.0 };
+        self.score(
+            db,
+            s,
+            &base,
+            &fields_of(&base, photo),
+            gains,
+            &balance,
+            alpha,
+        )
     }
 
     /// The best of the scored fits (both rounds, in task order; the first of equal scores),
