@@ -314,9 +314,8 @@ fn magnitude_sums_and_clear(resp: &mut [Complex32]) -> (f64, f64) {
 
 /// The descriptor's FFTs alone, on a `SIZE²` map: its spectrum and, per filter of the bank,
 /// the inverse FFT of the columns it touches on its folded grid (as [`describe`] does),
-/// nothing else. The cost
-/// floor that the benchmarks (native and WASM) print [`describe`] and retrieval against;
-/// returns a checksum so none of it is optimised away.
+/// nothing else. The cost floor that the benchmarks (native and WASM) print [`describe`] and
+/// retrieval against; returns a checksum so none of it is optimised away.
 pub fn fft_floor(map: &[f32]) -> f32 {
     assert_eq!(map.len(), SIZE * SIZE, "descriptor maps are SIZE²");
     let spec = spectrum_real(map, SIZE, SIZE, true);
