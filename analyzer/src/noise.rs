@@ -132,18 +132,22 @@ impl Tile {
     }
 }
 
-/// The 2D tile of `seed`, kept for the next caller among the last [`RECENT_2D`] made. One
+/// The 2D tile of `seed`, kept for the next caller among the [`RECENT_2D`] used last. One
 /// analysis renders the same few seeds many times (the noise model's tone curve at its fit
 /// seeds, every family's fit and ranking at the analysis seed), and a 512² tile takes tens of
-/// milliseconds to make where a copy takes a fraction of one. Same seed, same tile: what it
-/// returns does not depend on what was asked before.
+/// milliseconds to make (about 45 ms in the browser's worker) where a copy takes a fraction of
+/// one. Same seed, same tile: what it returns does not depend on what was asked before.
 fn recent_2d(seed: u32) -> Tile {
     use std::sync::{Arc, Mutex};
     static RECENT: Mutex<Vec<(u32, Arc<Tile>)>> = Mutex::new(Vec::new());
-    let found = RECENT
-        .lock()
-        .ok()
-        .and_then(|r| r.iter().find(|(s, _)| *s == seed).map(|(_, t)| t.clone()));
+    // Least recently used last out: a hit moves to the back.
+    let found = RECENT.lock().ok().and_then(|mut r| {
+        let i = r.iter().position(|(s, _)| *s == seed)?;
+        let entry = r.remove(i);
+        let tile = entry.1.clone();
+        r.push(entry);
+        Some(tile)
+    });
     let tile = found.unwrap_or_else(|| {
         let tile = Arc::new(Tile::generate(seed, 2, TILE_2D, rng::stream::TILE_2D));
         if let Ok(mut r) = RECENT.lock() {
@@ -157,8 +161,13 @@ fn recent_2d(seed: u32) -> Tile {
     Tile::clone(&tile)
 }
 
-/// How many 2D tiles [`recent_2d`] keeps (3 MB each).
-const RECENT_2D: usize = 8;
+/// How many 2D tiles [`recent_2d`] keeps (3 MB each). An automatic analysis asks for nine
+/// seeds: the database's (1), the analysis seed and the three after it (the structured fit's
+/// tone curve pools four renders), and the noise model's four tone-fit seeds; eight at the
+/// default seed, which is the database's. With eight kept first in, first out, every analysis
+/// at another seed made all nine again; twelve keep one analysis's seeds and a few of the
+/// previous one's.
+const RECENT_2D: usize = 12;
 
 /// The 2D tile's components drawn in the frequency domain ([`spectral`]): components 0 and 1
 /// are the real and imaginary parts of one draw (the Gaussian values `0 … 2n²`), component 2 the

@@ -20,18 +20,33 @@ const BITS: u32 = 11;
 const BUCKETS: usize = 1 << BITS;
 const PASSES: u32 = 3;
 
-/// One stable counting pass of `keys` (with `items` alongside) on digit `pass`, into `keys_out`
-/// and `items_out`.
-fn pass<T: Copy>(keys: &[u32], items: &[T], keys_out: &mut [u32], items_out: &mut [T], pass: u32) {
+/// Each pass's digit counts, all from one read of `keys` (the passes move keys, not change
+/// them, so every pass's counts are known before the first).
+fn digit_counts(keys: &[u32]) -> Vec<[usize; BUCKETS]> {
+    let mut counts = vec![[0usize; BUCKETS]; PASSES as usize];
+    for &k in keys {
+        for (p, c) in counts.iter_mut().enumerate() {
+            c[((k >> (p as u32 * BITS)) as usize) & (BUCKETS - 1)] += 1;
+        }
+    }
+    counts
+}
+
+/// One stable counting pass of `keys` (with `items` alongside) on digit `pass`, whose counts
+/// are `count`, into `keys_out` and `items_out`.
+fn pass<T: Copy>(
+    keys: &[u32],
+    items: &[T],
+    keys_out: &mut [u32],
+    items_out: &mut [T],
+    pass: u32,
+    count: &[usize; BUCKETS],
+) {
     let shift = pass * BITS;
     let digit = |k: u32| ((k >> shift) as usize) & (BUCKETS - 1);
-    let mut start = vec![0usize; BUCKETS];
-    for &k in keys {
-        start[digit(k)] += 1;
-    }
+    let mut start = [0usize; BUCKETS];
     let mut sum = 0;
-    for s in start.iter_mut() {
-        let c = *s;
+    for (s, &c) in start.iter_mut().zip(count) {
         *s = sum;
         sum += c;
     }
@@ -43,12 +58,22 @@ fn pass<T: Copy>(keys: &[u32], items: &[T], keys_out: &mut [u32], items_out: &mu
     }
 }
 
-/// Sorts `keys` stably, carrying `items`.
+/// Sorts `keys` stably, carrying `items`. A pass whose digit is the same in every key would
+/// leave the order as it is, and is skipped: the top digit (sign, exponent) often is, for the
+/// values of one image.
 fn sort_keyed<T: Copy + Default>(mut keys: Vec<u32>, mut items: Vec<T>) -> (Vec<u32>, Vec<T>) {
     let n = keys.len();
-    let (mut keys2, mut items2) = (vec![0u32; n], vec![T::default(); n]);
+    let counts = digit_counts(&keys);
+    let (mut keys2, mut items2) = (Vec::new(), Vec::new());
     for p in 0..PASSES {
-        pass(&keys, &items, &mut keys2, &mut items2, p);
+        let count = &counts[p as usize];
+        if count.contains(&n) {
+            continue;
+        }
+        if keys2.len() != n {
+            (keys2, items2) = (vec![0u32; n], vec![T::default(); n]);
+        }
+        pass(&keys, &items, &mut keys2, &mut items2, p, count);
         std::mem::swap(&mut keys, &mut keys2);
         std::mem::swap(&mut items, &mut items2);
     }
@@ -139,6 +164,29 @@ mod tests {
             let mut want: Vec<u32> = (0..n as u32).collect();
             want.sort_by(|&a, &b| v[a as usize].total_cmp(&v[b as usize]).then(a.cmp(&b)));
             assert_eq!(argsort(&v), want, "length {n}");
+        }
+    }
+
+    /// Values whose top digit (sign and exponent) is one for all, or every digit: the passes
+    /// that would not move anything are skipped, and the order is still `total_cmp`'s.
+    #[test]
+    fn sorts_with_constant_digits_skipped() {
+        let narrow: Vec<f32> = (0..5000)
+            .map(|i| 1.0 + rng::uniform(3, 0, i) as f32 * 0.99)
+            .collect();
+        let equal = vec![0.25f32; 3000];
+        let low_bits: Vec<f32> = (0..4000u32)
+            .map(|i| f32::from_bits(0x3f80_0000 | (i * 7919 % 2048)))
+            .collect();
+        for v in [narrow, equal, low_bits] {
+            let mut a = v.clone();
+            sort(&mut a);
+            let mut b = v.clone();
+            b.sort_unstable_by(f32::total_cmp);
+            assert_eq!(a, b);
+            let mut want: Vec<u32> = (0..v.len() as u32).collect();
+            want.sort_by(|&x, &y| v[x as usize].total_cmp(&v[y as usize]).then(x.cmp(&y)));
+            assert_eq!(argsort(&v), want);
         }
     }
 }

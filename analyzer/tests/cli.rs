@@ -238,6 +238,19 @@ fn fidelity_against_another_model_prints_the_paired_difference() {
     let text = run("1", false);
     assert!(text.contains("difference +0.00 ± 0.00"), "{text}");
     assert!(text.contains("the quadrants repeat"), "{text}");
+    // An unseen realisation: the same patches, another render of each analysed model.
+    let o = proctex(&[
+        "fidelity",
+        &photo,
+        "--seeds",
+        "2",
+        "--unseen-seed",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let u: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    assert_eq!(u["result"]["halves"], v["result"]["halves"]);
+    assert_ne!(u["result"]["per_patch"], v["result"]["per_patch"]);
 }
 
 #[test]
@@ -278,6 +291,12 @@ fn the_dev_set_yardstick_tabulates_choices_and_fidelity() {
     }
     assert_eq!(choice["pixels"], 128 * 128);
     let summary = &lines[1]["summary"];
+    assert!(
+        lines[1]["renders"]
+            .as_str()
+            .unwrap()
+            .contains("the fitted realisation")
+    );
     assert_eq!(summary["stochastic_ok"]["total"], 4);
     assert_eq!(summary["structured_labelled"]["total"], 0);
     assert_eq!(summary["specks_clean"]["total"], 4);

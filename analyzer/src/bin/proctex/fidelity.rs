@@ -8,7 +8,9 @@ use proctex::devset::{
     Category, PhotoResult, SPECK_LIMIT, Summary, defined, fold_of, overall, parse_manifest, ratios,
     speck_ratio,
 };
-use proctex::evaluate::{Synthesiser, fidelity, fidelity_by, fidelity_observed, ratio_difference};
+use proctex::evaluate::{
+    RenderSeed, Synthesiser, UNSEEN_SEED_OFFSET, fidelity_by, ratio_difference,
+};
 use proctex::heeger_bergen::RasterOptions;
 use proctex::retrieve::{ModelChoice, Refinement};
 use proctex::{Error, Result};
@@ -19,8 +21,8 @@ use super::{analysis_flag, parse_model_choice, refinement_of};
 use proctex::limits;
 
 const FIDELITY_HELP: &str = "\
-proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--json] [analyze OPTIONS]
-proctex fidelity --set DIR [--seeds N] [--fold K/F] [--json] [analyze OPTIONS]
+proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--unseen-seed] [--json] [analyze OPTIONS]
+proctex fidelity --set DIR [--seeds N] [--fold K/F] [--unseen-seed] [--json] [analyze OPTIONS]
 
 For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
 bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
@@ -47,7 +49,10 @@ and their difference with standard errors over photos, times, the confusion matr
 per patch the speck fraction of the photo, of the chosen model's synthesis and of every ranked
 candidate (isolated outlier pixels), summarised against 1.5× the photo's own.
 --fold K/F: only the photos of fold K (0..F-1) of F, by a hash of the file name (held-out
-folds for cross-validation).";
+folds for cross-validation).
+--unseen-seed: each analysed model is rendered at its seed + 1000, a realisation that no
+step of its fit rendered (the fit scores and pools renders of its own seed and the next
+three, which are partly fitted to the photo's realisation); default: its own seed's render.";
 
 pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut o = Options::default();
@@ -64,6 +69,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut set = None;
     let mut fold = None;
     let mut raster = RasterOptions::new(0, 0);
+    let mut render = RenderSeed::Fitted;
     while let Some(arg) = a.next() {
         match arg.as_str() {
             "-h" | "--help" => {
@@ -85,6 +91,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
             "--scales" => raster.scales = a.parsed(&arg)?,
             "--orientations" => raster.orientations = a.parsed(&arg)?,
             "--json" => json = true,
+            "--unseen-seed" => render = RenderSeed::Unseen,
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("fidelity: unknown option {f}"))),
             _ => files.push(arg),
@@ -97,7 +104,14 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
             ));
         }
         let seeds: Vec<u32> = (1..=nseeds.unwrap_or(1)).collect();
-        return dev_set(Path::new(&dir), &o, refinement, &seeds, fold, json);
+        return dev_set(
+            Path::new(&dir),
+            &o,
+            (refinement, render),
+            &seeds,
+            fold,
+            json,
+        );
     }
     if fold.is_some() {
         return Err(usage("fidelity: --fold needs --set"));
@@ -128,7 +142,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     for f in &files {
         let photo = load_photo(f, a.photo_pixels())?;
         let by = |c: Choice| {
-            let synthesiser = c.synthesiser(refinement, raster);
+            let synthesiser = c.synthesiser(refinement, render, raster);
             fidelity_by(&photo, &o, synthesiser, &seeds, &mut |_| {})
         };
         let r = by(model)?;
@@ -202,9 +216,14 @@ enum Choice {
 }
 
 impl Choice {
-    fn synthesiser(self, refinement: Refinement, raster: RasterOptions) -> Synthesiser {
+    fn synthesiser(
+        self,
+        refinement: Refinement,
+        render: RenderSeed,
+        raster: RasterOptions,
+    ) -> Synthesiser {
         match self {
-            Choice::Model(m) => Synthesiser::Model(m, refinement),
+            Choice::Model(m) => Synthesiser::Model(m, refinement, render),
             Choice::Pyramid => Synthesiser::Pyramid(raster),
         }
     }
@@ -234,7 +253,7 @@ fn fold_of_arg(v: &str) -> Result<(usize, usize)> {
 fn dev_set(
     dir: &Path,
     o: &Options,
-    refinement: Refinement,
+    (refinement, render): (Refinement, RenderSeed),
     seeds: &[u32],
     fold: Option<(usize, usize)>,
     json: bool,
@@ -254,8 +273,14 @@ fn dev_set(
         sides.push(photo.width.min(photo.height) / 2);
         let r = PhotoResult::measure(
             entry,
-            |observe| fidelity_observed(&photo, o, ModelChoice::Auto, refinement, seeds, observe),
-            || fidelity(&photo, o, ModelChoice::Noise, refinement, seeds),
+            |observe| {
+                let auto = Synthesiser::Model(ModelChoice::Auto, refinement, render);
+                fidelity_by(&photo, o, auto, seeds, observe)
+            },
+            || {
+                let noise = Synthesiser::Model(ModelChoice::Noise, refinement, render);
+                fidelity_by(&photo, o, noise, seeds, &mut |_| {})
+            },
         )?;
         if json {
             println!("{}", serde_json::json!({ "photo": r }));
@@ -265,10 +290,20 @@ fn dev_set(
         results.push(r);
     }
     let summary = Summary::of(&results, &sides);
+    let seed = match render {
+        RenderSeed::Fitted => "the analysis seed's (the fitted realisation)".to_string(),
+        RenderSeed::Unseen => {
+            format!("the analysis seed + {UNSEEN_SEED_OFFSET} (unseen by the fit)")
+        }
+    };
     if json {
-        println!("{}", serde_json::json!({ "summary": summary }));
+        println!(
+            "{}",
+            serde_json::json!({ "summary": summary, "renders": seed })
+        );
     } else {
         print_summary(&summary, fold);
+        println!("renders scored: {seed}");
     }
     Ok(())
 }
