@@ -251,6 +251,10 @@ fn fidelity_against_another_model_prints_the_paired_difference() {
     let u: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
     assert_eq!(u["result"]["halves"], v["result"]["halves"]);
     assert_ne!(u["result"]["per_patch"], v["result"]["per_patch"]);
+    // The help names the offset (the library's constant, filled in).
+    let help = stdout(&proctex(&["fidelity", "--help"]));
+    assert!(help.contains("--unseen-seed: each analysed model is rendered at its seed + "));
+    assert!(!help.contains("UNSEEN"), "{help}");
 }
 
 #[test]

@@ -50,7 +50,7 @@ per patch the speck fraction of the photo, of the chosen model's synthesis and o
 candidate (isolated outlier pixels), summarised against 1.5× the photo's own.
 --fold K/F: only the photos of fold K (0..F-1) of F, by a hash of the file name (held-out
 folds for cross-validation).
---unseen-seed: each analysed model is rendered at its seed + 1000, a realisation that no
+--unseen-seed: each analysed model is rendered at its seed + UNSEEN, a realisation that no
 step of its fit rendered (the fit scores and pools renders of its own seed and the next
 three, which are partly fitted to the photo's realisation); default: its own seed's render.";
 
@@ -73,7 +73,8 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     while let Some(arg) = a.next() {
         match arg.as_str() {
             "-h" | "--help" => {
-                println!("{FIDELITY_HELP}");
+                let offset = UNSEEN_SEED_OFFSET.to_string();
+                println!("{}", FIDELITY_HELP.replace("UNSEEN", &offset));
                 return Ok(());
             }
             "--seeds" => nseeds = Some(a.parsed::<u32>(&arg)?),
@@ -104,14 +105,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
             ));
         }
         let seeds: Vec<u32> = (1..=nseeds.unwrap_or(1)).collect();
-        return dev_set(
-            Path::new(&dir),
-            &o,
-            (refinement, render),
-            &seeds,
-            fold,
-            json,
-        );
+        return dev_set(Path::new(&dir), &o, refinement, render, &seeds, fold, json);
     }
     if fold.is_some() {
         return Err(usage("fidelity: --fold needs --set"));
@@ -253,7 +247,8 @@ fn fold_of_arg(v: &str) -> Result<(usize, usize)> {
 fn dev_set(
     dir: &Path,
     o: &Options,
-    (refinement, render): (Refinement, RenderSeed),
+    refinement: Refinement,
+    render: RenderSeed,
     seeds: &[u32],
     fold: Option<(usize, usize)>,
     json: bool,
