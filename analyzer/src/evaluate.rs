@@ -174,15 +174,27 @@ pub fn synthesize_model_progress(
 
 /// The analysis' texture rendered at exactly the photo's pixel size.
 fn render_at_photo_size(a: &Analysis, photo: &Photo, render: RenderSeed) -> Photo {
+    renders_at_photo_size(a, photo, render).swap_remove(0)
+}
+
+/// The realisations of the analysis' texture that `render` says (at least one), each at
+/// exactly the photo's pixel size.
+fn renders_at_photo_size(a: &Analysis, photo: &Photo, render: RenderSeed) -> Vec<Photo> {
     match render {
-        RenderSeed::Fitted => render_params_at_photo_size(&a.params, photo),
-        RenderSeed::Unseen => {
-            let p = crate::params::Params {
-                seed: a.params.seed.wrapping_add(UNSEEN_SEED_OFFSET),
-                ..a.params.clone()
-            };
-            render_params_at_photo_size(&p, photo)
-        }
+        RenderSeed::Fitted => vec![render_params_at_photo_size(&a.params, photo)],
+        RenderSeed::Unseen(k) => (0..k.max(1))
+            .map(|j| {
+                let p = crate::params::Params {
+                    seed: a
+                        .params
+                        .seed
+                        .wrapping_add(UNSEEN_SEED_OFFSET)
+                        .wrapping_add(j),
+                    ..a.params.clone()
+                };
+                render_params_at_photo_size(&p, photo)
+            })
+            .collect(),
     }
 }
 
@@ -201,8 +213,11 @@ pub enum RenderSeed {
     /// The analysis seed's render (the view the app opens on).
     #[default]
     Fitted,
-    /// The render at the analysis seed + [`UNSEEN_SEED_OFFSET`]: no step of the fit drew it.
-    Unseen,
+    /// The renders at the analysis seed + [`UNSEEN_SEED_OFFSET`] + 0, 1, … (this many, at
+    /// least one; their distances averaged): no step of the fit drew them. One realisation is
+    /// one draw of the pieces a patch holds (a few bricks or planks, each with its own shade),
+    /// so a paired comparison of two builds scatters less with several.
+    Unseen(u32),
 }
 
 /// How far [`RenderSeed::Unseen`] moves the seed: past every seed the fit renders (the tone
@@ -304,9 +319,10 @@ pub struct SynthesisRun<'a> {
     pub ranking: &'a [Suggestion],
     /// Wall time of the patch's analysis (model choice included, the render not), milliseconds.
     pub analysis_ms: f64,
-    /// The synthesis' distances to the other patch of its pair.
+    /// The synthesis' distances to the other patch of its pair (its realisations' mean).
     pub distances: Distances,
-    /// The source patch and the synthesis (rendered at the patch's size).
+    /// The source patch and the synthesis (rendered at the patch's size; its first
+    /// realisation).
     pub source: &'a Photo,
     pub synthesis: &'a Photo,
 }
@@ -340,7 +356,7 @@ pub fn fidelity_by(
                 let (analysis, ranking) =
                     analyze_photo_model_progress(src, &o, choice, refinement, &|_, _| true)?;
                 let ms = start.elapsed().as_secs_f64() * 1000.0;
-                Ok((render_at_photo_size(&analysis, src, render), ranking, ms))
+                Ok((renders_at_photo_size(&analysis, src, render), ranking, ms))
             }
             Synthesiser::Pyramid(raster) => {
                 let raster = RasterOptions {
@@ -350,7 +366,11 @@ pub fn fidelity_by(
                     ..raster
                 };
                 let syn = crate::heeger_bergen::synthesize(src, &raster)?;
-                Ok((syn, Vec::new(), start.elapsed().as_secs_f64() * 1000.0))
+                Ok((
+                    vec![syn],
+                    Vec::new(),
+                    start.elapsed().as_secs_f64() * 1000.0,
+                ))
             }
         }
     };
@@ -364,12 +384,13 @@ pub fn fidelity_with(
     seeds: &[u32],
     synthesise: &mut dyn FnMut(&Photo, u32) -> Result<Photo>,
 ) -> Result<Fidelity> {
-    let mut make = |src: &Photo, seed: u32| Ok((synthesise(src, seed)?, Vec::new(), 0.0));
+    let mut make = |src: &Photo, seed: u32| Ok((vec![synthesise(src, seed)?], Vec::new(), 0.0));
     fidelity_core(photo, seeds, &mut make, &mut |_| {})
 }
 
-/// What a synthesis of the protocol returns: the texture, the ranking, the analysis' time (ms).
-type Made = (Photo, Vec<Suggestion>, f64);
+/// What a synthesis of the protocol returns: the texture's realisations (at least one; the
+/// protocol averages their distances), the ranking, the analysis' time (ms).
+type Made = (Vec<Photo>, Vec<Suggestion>, f64);
 
 fn fidelity_core(
     photo: &Photo,
@@ -389,8 +410,12 @@ fn fidelity_core(
         halves = halves.zip(d, |x, y| x + y / pairs.len() as f64);
         for &seed in seeds {
             for (di, (src, other)) in [(a, b), (b, a)].into_iter().enumerate() {
-                let (syn, ranking, analysis_ms) = make(src, seed)?;
-                let d = distances(&syn, other);
+                let (syns, ranking, analysis_ms) = make(src, seed)?;
+                let k = syns.len().max(1) as f64;
+                let d = syns.iter().fold(Distances::ZERO, |acc, syn| {
+                    acc.zip(distances(syn, other), |x, y| x + y / k)
+                });
+                let syn = &syns[0];
                 observe(SynthesisRun {
                     patch: 2 * pi + di,
                     seed,
@@ -398,7 +423,7 @@ fn fidelity_core(
                     analysis_ms,
                     distances: d,
                     source: src,
-                    synthesis: &syn,
+                    synthesis: syn,
                 });
                 synthesis = synthesis.zip(d, |x, y| x + y);
                 per_patch[2 * pi + di] =
@@ -450,6 +475,41 @@ mod tests {
             per_patch: per_patch.map(d),
             repeat: false,
         }
+    }
+
+    #[test]
+    fn unseen_renders_are_the_seeds_past_the_offset_in_order() {
+        let photo = random_patch(5, 32, 32);
+        let a = Analysis {
+            params: crate::analyze::hash_noise_params(32, 9),
+            band_powers: Default::default(),
+            channel_variance: [0.0; 3],
+        };
+        let at = |seed: u32| {
+            let p = crate::params::Params {
+                seed,
+                ..a.params.clone()
+            };
+            render_params_at_photo_size(&p, &photo).pixels
+        };
+        let fitted = renders_at_photo_size(&a, &photo, RenderSeed::Fitted);
+        assert_eq!(fitted.len(), 1);
+        assert_eq!(fitted[0].pixels, at(a.params.seed));
+        let unseen = renders_at_photo_size(&a, &photo, RenderSeed::Unseen(3));
+        assert_eq!(unseen.len(), 3);
+        for (j, r) in unseen.iter().enumerate() {
+            assert_eq!(
+                r.pixels,
+                at(a.params.seed + UNSEEN_SEED_OFFSET + j as u32),
+                "{j}"
+            );
+        }
+        assert_ne!(unseen[0].pixels, unseen[1].pixels);
+        // At least one realisation, whatever the count says.
+        assert_eq!(
+            renders_at_photo_size(&a, &photo, RenderSeed::Unseen(0)).len(),
+            1
+        );
     }
 
     #[test]

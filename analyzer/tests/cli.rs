@@ -251,6 +251,22 @@ fn fidelity_against_another_model_prints_the_paired_difference() {
     let u: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
     assert_eq!(u["result"]["halves"], v["result"]["halves"]);
     assert_ne!(u["result"]["per_patch"], v["result"]["per_patch"]);
+    // Two unseen realisations averaged: the same patches, other distances; none is refused.
+    let o = proctex(&[
+        "fidelity",
+        &photo,
+        "--seeds",
+        "2",
+        "--unseen-seeds",
+        "2",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let u2: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    assert_eq!(u2["result"]["halves"], v["result"]["halves"]);
+    assert_ne!(u2["result"]["per_patch"], u["result"]["per_patch"]);
+    let o = proctex(&["fidelity", &photo, "--unseen-seeds", "0"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     // The help names the offset (the library's constant, filled in).
     let help = stdout(&proctex(&["fidelity", "--help"]));
     assert!(help.contains("--unseen-seed: each analysed model is rendered at its seed + "));

@@ -21,8 +21,8 @@ use super::{analysis_flag, parse_model_choice, refinement_of};
 use proctex::limits;
 
 const FIDELITY_HELP: &str = "\
-proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--unseen-seed] [--json] [analyze OPTIONS]
-proctex fidelity --set DIR [--seeds N] [--fold K/F] [--unseen-seed] [--json] [analyze OPTIONS]
+proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--unseen-seed | --unseen-seeds K] [--json] [analyze OPTIONS]
+proctex fidelity --set DIR [--seeds N] [--fold K/F] [--unseen-seed | --unseen-seeds K] [--json] [analyze OPTIONS]
 
 For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
 bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
@@ -52,7 +52,9 @@ candidate (isolated outlier pixels), summarised against 1.5× the photo's own.
 folds for cross-validation).
 --unseen-seed: each analysed model is rendered at its seed + UNSEEN, a realisation that no
 step of its fit rendered (the fit scores and pools renders of its own seed and the next
-three, which are partly fitted to the photo's realisation); default: its own seed's render.";
+three, which are partly fitted to the photo's realisation); default: its own seed's render.
+--unseen-seeds K: K such realisations (seed + UNSEEN, + UNSEEN + 1, …), their distances
+averaged (specks: the first); a paired comparison of two builds then scatters less.";
 
 pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut o = Options::default();
@@ -92,7 +94,14 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
             "--scales" => raster.scales = a.parsed(&arg)?,
             "--orientations" => raster.orientations = a.parsed(&arg)?,
             "--json" => json = true,
-            "--unseen-seed" => render = RenderSeed::Unseen,
+            "--unseen-seed" => render = RenderSeed::Unseen(1),
+            "--unseen-seeds" => {
+                let k = a.parsed::<u32>(&arg)?;
+                if k == 0 {
+                    return Err(usage("fidelity: --unseen-seeds needs K ≥ 1"));
+                }
+                render = RenderSeed::Unseen(k);
+            }
             f if analysis_flag(f, &mut a, &mut o)? => {}
             f if f.starts_with('-') => return Err(usage(format!("fidelity: unknown option {f}"))),
             _ => files.push(arg),
@@ -287,9 +296,13 @@ fn dev_set(
     let summary = Summary::of(&results, &sides);
     let seed = match render {
         RenderSeed::Fitted => "the analysis seed's (the fitted realisation)".to_string(),
-        RenderSeed::Unseen => {
+        RenderSeed::Unseen(1) => {
             format!("the analysis seed + {UNSEEN_SEED_OFFSET} (unseen by the fit)")
         }
+        RenderSeed::Unseen(k) => format!(
+            "the analysis seed + {UNSEEN_SEED_OFFSET} … + {} (unseen by the fit; distances averaged)",
+            UNSEEN_SEED_OFFSET + k - 1
+        ),
     };
     if json {
         println!(
