@@ -166,15 +166,10 @@ pub fn synthesize_model_progress(
 ) -> Result<(Photo, Analysis, Vec<Suggestion>)> {
     let (a, suggestions) = analyze_photo_model_progress(photo, opts, choice, refinement, progress)?;
     Ok((
-        render_at_photo_size(&a, photo, RenderSeed::Fitted),
+        render_params_at_photo_size(&a.params, photo),
         a,
         suggestions,
     ))
-}
-
-/// The analysis' texture rendered at exactly the photo's pixel size.
-fn render_at_photo_size(a: &Analysis, photo: &Photo, render: RenderSeed) -> Photo {
-    renders_at_photo_size(a, photo, render).swap_remove(0)
 }
 
 /// The realisations of the analysis' texture that `render` says (at least one), each at

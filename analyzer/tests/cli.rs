@@ -238,31 +238,20 @@ fn fidelity_against_another_model_prints_the_paired_difference() {
     let text = run("1", false);
     assert!(text.contains("difference +0.00 ± 0.00"), "{text}");
     assert!(text.contains("the quadrants repeat"), "{text}");
-    // An unseen realisation: the same patches, another render of each analysed model.
-    let o = proctex(&[
-        "fidelity",
-        &photo,
-        "--seeds",
-        "2",
-        "--unseen-seed",
-        "--json",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let u: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    // Unseen realisations (`render`: the flag and its values): at seeds 1 and 2, JSON.
+    let unseen = |render: &[&str]| -> serde_json::Value {
+        let mut args = vec!["fidelity", &photo, "--seeds", "2", "--json"];
+        args.extend_from_slice(render);
+        let o = proctex(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_str(stdout(&o).trim()).unwrap()
+    };
+    // One: the same patches, another render of each analysed model.
+    let u = unseen(&["--unseen-seed"]);
     assert_eq!(u["result"]["halves"], v["result"]["halves"]);
     assert_ne!(u["result"]["per_patch"], v["result"]["per_patch"]);
-    // Two unseen realisations averaged: the same patches, other distances; none is refused.
-    let o = proctex(&[
-        "fidelity",
-        &photo,
-        "--seeds",
-        "2",
-        "--unseen-seeds",
-        "2",
-        "--json",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let u2: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    // Two averaged: the same patches, other distances; none is refused.
+    let u2 = unseen(&["--unseen-seeds", "2"]);
     assert_eq!(u2["result"]["halves"], v["result"]["halves"]);
     assert_ne!(u2["result"]["per_patch"], u["result"]["per_patch"]);
     let o = proctex(&["fidelity", &photo, "--unseen-seeds", "0"]);
