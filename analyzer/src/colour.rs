@@ -281,16 +281,25 @@ pub fn slerp(a: Quat, b: Quat, t: f64) -> Quat {
 }
 
 /// Quantile function of `v` at `count` mid-probabilities.
-fn quantiles(mut v: Vec<f32>, count: usize) -> Vec<f64> {
-    crate::radix::sort(&mut v);
+fn quantiles(v: Vec<f32>, count: usize) -> Vec<f64> {
     let n = v.len();
-    (0..count)
+    // Each quantile interpolates between two order statistics: only those are found
+    // (`radix::order_statistics`, the same bits as sorting all of `v`).
+    let at: Vec<(usize, f64)> = (0..count)
         .map(|i| {
             let pos = (i as f64 + 0.5) / count as f64 * (n - 1) as f64;
             let k = pos.floor() as usize;
-            let f = pos - k as f64;
-            v[k] as f64 * (1.0 - f) + v[(k + 1).min(n - 1)] as f64 * f
+            (k, pos - k as f64)
         })
+        .collect();
+    let ranks: Vec<usize> = at
+        .iter()
+        .flat_map(|&(k, _)| [k, (k + 1).min(n - 1)])
+        .collect();
+    let stats = crate::radix::order_statistics(&v, &ranks);
+    at.iter()
+        .zip(stats.chunks_exact(2))
+        .map(|(&(_, f), s)| s[0] as f64 * (1.0 - f) + s[1] as f64 * f)
         .collect()
 }
 

@@ -279,11 +279,9 @@ pub fn describe(map: &[f32]) -> Descriptor {
         out[i] = m as f32;
         out[block + i] = (s2 * (k * k) / samples - m * m).max(0.0).sqrt() as f32;
     }
-    let mut sorted = z;
-    crate::radix::sort(&mut sorted);
-    for (i, &p) in QUANTILE_AT.iter().enumerate() {
-        out[2 * block + i] = sorted[((sorted.len() - 1) as f32 * p).round() as usize];
-    }
+    let ranks = QUANTILE_AT.map(|p| ((z.len() - 1) as f32 * p).round() as usize);
+    let stats = crate::radix::order_statistics(&z, &ranks);
+    out[2 * block..2 * block + QUANTILES].copy_from_slice(&stats);
     Descriptor(out)
 }
 

@@ -293,23 +293,47 @@ pub fn quantile_match(
 ) -> Tone {
     let mut tone = Tone::identity(knots);
     for c in 0..3 {
-        let mut r: Vec<f32> = renders
+        let r: Vec<f32> = renders
             .iter()
             .flat_map(|px| px.iter().map(move |p| p[c]))
             .collect();
-        crate::radix::sort(&mut r);
-        let lo = quantile(&r, 0.002);
-        let hi = quantile(&r, 0.998).max(lo + 1e-3);
+        // Two order statistics and, per knot, the count of values below it: what sorting
+        // `r` gave (its nearest-rank quantiles, and `partition_point` of `v < x`), in linear
+        // time.
+        let rank = |f: f64| ((r.len() - 1) as f64 * f).round() as usize;
+        let ends = crate::radix::order_statistics(&r, &[rank(0.002), rank(0.998)]);
+        let lo = ends[0];
+        let hi = ends[1].max(lo + 1e-3);
         tone.range[c] = [lo, hi];
+        let at: Vec<f32> = (0..knots)
+            .map(|k| lo + (hi - lo) * k as f32 / (knots - 1) as f32)
+            .collect();
+        let below = counts_below(&r, &at);
         let mut prev = f32::NEG_INFINITY;
-        for (k, v) in tone.knots[c].iter_mut().enumerate() {
-            let x = lo + (hi - lo) * k as f32 / (knots - 1) as f32;
-            let f = r.partition_point(|&v| v < x) as f64 / r.len() as f64;
+        for (v, &count) in tone.knots[c].iter_mut().zip(&below) {
+            let f = count as f64 / r.len() as f64;
             prev = quantile(&sorted_photo[c], f.clamp(0.002, 0.998)).max(prev);
             *v = prev;
         }
     }
     tone
+}
+
+/// For each of the ascending thresholds `at`, how many of `values` are below it (`v < x`).
+fn counts_below(values: &[f32], at: &[f32]) -> Vec<usize> {
+    // `first[j]`: the values below `at[j]` and no earlier threshold (`j = at.len()`: below
+    // none); a value is below `at[k]` for every `k` from its `j` on.
+    let mut first = vec![0usize; at.len() + 1];
+    for &v in values {
+        first[at.partition_point(|&x| v.partial_cmp(&x) != Some(std::cmp::Ordering::Less))] += 1;
+    }
+    let mut out = vec![0usize; at.len()];
+    let mut sum = 0;
+    for (k, o) in out.iter_mut().enumerate() {
+        sum += first[k];
+        *o = sum;
+    }
+    out
 }
 
 /// The sample quantile of sorted `v` at fraction `f` (nearest rank).
