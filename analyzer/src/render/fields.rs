@@ -81,9 +81,10 @@ impl Fields {
 }
 
 /// Everything a render reads before its colouring (see [`super::shade`]): the image's size and
-/// view; whether solid, the noise transform, the residual's band count and band offsets; the
-/// pattern's kind, seed, placement, values and octave offsets. Bit patterns, so that equal keys
-/// mean bit-identical fields.
+/// view; whether solid, the noise transform, the residual's band count, band offsets and band
+/// orientations (each band's mixing with its derivative, read by [`band_noise`]); the pattern's
+/// kind, seed, placement, values and octave offsets. Bit patterns, so that equal keys mean
+/// bit-identical fields.
 fn fields_key(prep: &Prepared, width: u32, height: u32, view: &View) -> Vec<u32> {
     let mut k = vec![
         width,
@@ -103,12 +104,9 @@ fn fields_key(prep: &Prepared, width: u32, height: u32, view: &View) -> Vec<u32>
     k.extend(prep.pattern_transform.map(f32::to_bits));
     k.extend(prep.pattern_values.map(f32::to_bits));
     k.extend(prep.pattern_offsets.iter().flatten().map(|v| v.to_bits()));
-    k.extend(
-        prep.offsets[..prep.bands as usize]
-            .iter()
-            .flatten()
-            .map(|v| v.to_bits()),
-    );
+    let bands = prep.bands as usize;
+    k.extend(prep.offsets[..bands].iter().flatten().map(|v| v.to_bits()));
+    k.extend(prep.orient[..bands].iter().flatten().map(|v| v.to_bits()));
     k
 }
 
@@ -212,7 +210,22 @@ mod tests {
         if let Model::Structured(m) = &mut rougher.model {
             m.pattern.scale *= 1.1;
         }
-        for q in [&other_seed, &rougher] {
+        // The residual's third band streaked: the band noise itself changes.
+        let mut oriented = p.clone();
+        if let Model::Structured(m) = &mut oriented.model {
+            m.residual.orientation = vec![
+                crate::params::BandOrientation {
+                    angle_deg: 0.0,
+                    strength: 0.0,
+                };
+                4
+            ];
+            m.residual.orientation[2] = crate::params::BandOrientation {
+                angle_deg: 30.0,
+                strength: 0.8,
+            };
+        }
+        for q in [&other_seed, &rougher, &oriented] {
             assert!(!fields.fit(&Prepared::new(q), 24, 24, &View::default()));
             assert_eq!(
                 render_with_fields(q, 24, 24, &View::default(), &fields),
