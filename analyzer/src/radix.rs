@@ -173,12 +173,16 @@ fn select_keys(keys: &[u32], ranks: &[usize]) -> Vec<u32> {
     for b in 0..SELECT_BUCKETS {
         start[b + 1] += start[b];
     }
-    let bucket_of_rank = |r: usize| start.partition_point(|&s| s as usize <= r) - 1;
+    // Each rank's bucket (`start[b] <= r < start[b + 1]`).
+    let of_rank: Vec<usize> = ranks
+        .iter()
+        .map(|&r| start.partition_point(|&s| s as usize <= r) - 1)
+        .collect();
     // Where each wanted bucket's keys go in the gathered array (`u32::MAX`: not wanted).
     let mut place = vec![u32::MAX; SELECT_BUCKETS];
     let mut gathered_len = 0u32;
     for &i in &order {
-        let b = bucket_of_rank(ranks[i]);
+        let b = of_rank[i];
         if place[b] == u32::MAX {
             place[b] = gathered_len;
             gathered_len += start[b + 1] - start[b];
@@ -195,24 +199,18 @@ fn select_keys(keys: &[u32], ranks: &[usize]) -> Vec<u32> {
     }
     // Each wanted bucket (its ranks are consecutive in `order`): selected in place, or split
     // again when large.
-    let mut g = 0;
-    while g < order.len() {
-        let b = bucket_of_rank(ranks[order[g]]);
-        let mut e = g + 1;
-        while e < order.len() && bucket_of_rank(ranks[order[e]]) == b {
-            e += 1;
-        }
+    for group in order.chunk_by(|&i, &j| of_rank[i] == of_rank[j]) {
+        let b = of_rank[group[0]];
         let (first, len) = (start[b] as usize, (start[b + 1] - start[b]) as usize);
         let slice = &mut gathered[place[b] as usize..place[b] as usize + len];
         if len <= SELECT_SORTED {
-            select_in_place(slice, ranks, &order[g..e], first, &mut out);
+            select_in_place(slice, ranks, group, first, &mut out);
         } else {
-            let local: Vec<usize> = order[g..e].iter().map(|&i| ranks[i] - first).collect();
-            for (&i, k) in order[g..e].iter().zip(select_keys(slice, &local)) {
+            let local: Vec<usize> = group.iter().map(|&i| ranks[i] - first).collect();
+            for (&i, k) in group.iter().zip(select_keys(slice, &local)) {
                 out[i] = k;
             }
         }
-        g = e;
     }
     out
 }
@@ -226,12 +224,14 @@ fn select_in_place(
     first: usize,
     out: &mut [u32],
 ) {
-    let mut from = 0;
+    // The last rank put in place: everything right of it is not smaller.
+    let mut placed: Option<usize> = None;
     for &i in order {
         let r = ranks[i] - first;
-        if r > from || (r == from && from == 0) {
+        if placed != Some(r) {
+            let from = placed.unwrap_or(0);
             slice[from..].select_nth_unstable(r - from);
-            from = r;
+            placed = Some(r);
         }
         out[i] = slice[r];
     }
