@@ -9,7 +9,9 @@
 //! rank-matched to the patch's values), judged by the fidelity protocol (quadrant pairs, seeds
 //! 1..S) on the stochastic photos of a manifest:
 //! 1. `octave bands`: the model's bands `0..nb` (one per octave, as the product);
-//! 2. `octave + half-octave bands`: the same and the `nb − 1` bands between them.
+//! 2. `octave + half-octave bands`: the same and the `nb − 1` bands between them;
+//! 3. the same for the first decorrelated channel only, the other two with octave bands (what a
+//!    fourth tile component, read by the same fetch, could carry).
 //!
 //! ```text
 //! cargo run --release -p proctex-analyzer --example half_octave_lab -- \
@@ -28,13 +30,14 @@ use proctex::ring_fit::{RING_DENSITY, density, fit_weights_by, ring_powers};
 use proctex::rng;
 use proctex::spectrum::{FINE_PER_OCTAVE, num_bands};
 
-const RUNGS: [&str; 6] = [
+const RUNGS: [&str; 7] = [
     "octave bands",
     "octave bands fitted to the Gaussianised channels",
     "octave + half-octave bands",
     "the model's isotropic noise, exact histograms",
     "the model's (oriented) noise, exact histograms",
     "the model as it renders (its knots, its tone curve)",
+    "octave + half-octave bands for the first channel only",
 ];
 
 /// Band `k` of the half-octave set: even `k` is octave band `k/2`, odd `k` the band between
@@ -87,6 +90,9 @@ fn synthesise(rung: usize, src: &Photo, seed: u32) -> Photo {
         5 => return product(src, seed, true, false),
         _ => {}
     }
+    // The last rung: half-octave bands for channel 0, octave bands for the others.
+    let first_only = rung == 6;
+    let rung = if first_only { 2 } else { rung };
     let (w, h) = (src.width as usize, src.height as usize);
     let opts = Options {
         seed,
@@ -126,6 +132,20 @@ fn synthesise(rung: usize, src: &Photo, seed: u32) -> Photo {
         };
         let rings = ring_powers(&measured, w, h, true);
         let total: f64 = rings.power.iter().sum();
+        if first_only && c > 0 {
+            // Octave bands alone: the half-octave slots left at zero.
+            let octave = fit_weights_by(
+                &|k: usize, t: usize| density(&RING_DENSITY, k, t),
+                &rings,
+                w,
+                h,
+                nb,
+                &vec![total / nb as f64; nb],
+            );
+            return (0..count)
+                .map(|k| if k % 2 == 0 { octave[k / 2] } else { 0.0 })
+                .collect();
+        }
         fit_weights_by(
             &dens,
             &rings,

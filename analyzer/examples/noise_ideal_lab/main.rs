@@ -43,16 +43,25 @@
 //! With `--rounds`: the product as it renders (its RGB output curve is one round of
 //! distribution transfer), then further rounds along fixed rotations, fitted as the product
 //! fits its curve: what more rounds would buy before the parameter budget.
+//! With `--marginals` ([`marginals`]): box bands summed as Gaussian fields against the same
+//! bands each given the patch's own band marginal first (Heeger & Bergen's subband histograms).
+//!
+//! Every random-phase rung has exact amplitudes (each frequency's modulus exactly its box's, or
+//! the patch's own for the floor) unless `PROCTEX_LAB_GAUSSIAN` is set: then the white noise's
+//! own moduli, scaled to the same expected spectrum (a Gaussian field of it, as a procedural
+//! noise is). The rung names do not change with it.
 //!
 //! ```text
-//! cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
-//!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands | --orient | --colour | --expected | --rounds]
+//! [PROCTEX_LAB_GAUSSIAN=1] cargo run --release -p proctex-analyzer --example noise_ideal_lab -- \
+//!     ../shared/photos/dev/manifest.tsv [SEEDS] [--bands | --orient | --colour | --expected | --rounds | --marginals]
 //! ```
 
 #[path = "../lab_common/ladder.rs"]
 mod ladder;
+mod marginals;
 mod realisation;
 use ladder::{decorrelated, mean_se, print_ladder, rank_match, run_ladder, stochastic_photos};
+use marginals::{MARGINAL_RUNGS, synthesise_marginals};
 use proctex::analyze::{Options, analyze_photo};
 use proctex::evaluate::random_phase;
 use proctex::input::Photo;
@@ -185,6 +194,30 @@ fn model_of(src: &Photo, seed: u32) -> Model {
     }
 }
 
+/// Whether the ladders draw Gaussian amplitudes (`PROCTEX_LAB_GAUSSIAN` set).
+fn gaussian_amplitudes() -> bool {
+    std::env::var_os("PROCTEX_LAB_GAUSSIAN").is_some()
+}
+
+/// The floor: with `PROCTEX_LAB_GAUSSIAN`, each decorrelated channel's own full 2D amplitude
+/// spectrum times white noise's moduli (a Gaussian field of the patch's own spectrum), rank
+/// matched; else the product's random-phase floor (`evaluate::random_phase`).
+fn floor(src: &Photo, seed: u32) -> Photo {
+    if !gaussian_amplitudes() {
+        return random_phase(src, seed);
+    }
+    let (w, h) = (src.width as usize, src.height as usize);
+    let m = model_of(src, seed);
+    let v = std::array::from_fn(|c| {
+        let spec = spectrum_real(&m.channels[c], w, h, true);
+        let field = random_phase_field(w, h, seed, c, |i| {
+            if i == 0 { None } else { Some(spec[i].norm()) }
+        });
+        rank_match(&field, &m.channels[c])
+    });
+    to_rgb(&m, &v, src.width, src.height)
+}
+
 /// A Gaussian field with `chan`'s power averaged over octave rings (one box band per octave),
 /// random phases of `seed`, zero mean.
 fn octave_box_field(chan: &[f32], w: usize, h: usize, seed: u32, c: usize) -> Vec<f32> {
@@ -209,10 +242,16 @@ fn random_phase_field(
     let noise: Vec<f32> = (0..w * h)
         .map(|i| rng::gaussian(seed, 0x6f63_7462 + c as u32, i as u32) as f32)
         .collect();
+    // `PROCTEX_LAB_GAUSSIAN`: the white noise's own (Rayleigh) moduli kept, scaled so that
+    // their expected square is `a²`: a Gaussian field of expected spectrum `a²`, as any
+    // procedural noise of that spectrum is, instead of one with the moduli exactly `a`.
+    let gaussian = gaussian_amplitudes();
+    let unit = 1.0 / ((w * h) as f32).sqrt();
     let shaped: Vec<_> = fft2_real(&noise, w, h)
         .iter()
         .enumerate()
         .map(|(i, ph)| match amplitude(i) {
+            Some(a) if gaussian => ph * (a * unit),
             Some(a) => {
                 let m = ph.norm();
                 if m > 0.0 { ph * (a / m) } else { *ph }
@@ -235,6 +274,23 @@ fn box_field(
     wedges: usize,
 ) -> Vec<f32> {
     let spec = spectrum_real(chan, w, h, true);
+    let (bins_of, count) = box_bins(w, h, per_octave, wedges);
+    let (mut power, mut bins) = (vec![0.0f64; count], vec![0usize; count]);
+    for (s, b) in spec.iter().zip(&bins_of) {
+        if let Some(j) = b {
+            power[*j] += s.norm_sqr() as f64;
+            bins[*j] += 1;
+        }
+    }
+    random_phase_field(w, h, seed, c, |i| {
+        bins_of[i].map(|j| (power[j] / bins[j].max(1) as f64).sqrt() as f32)
+    })
+}
+
+/// The box of every FFT index of a `w × h` image (`None`: the mean) for boxes of `per_octave`
+/// radial bins per octave, each cut into `wedges` orientation wedges over 180°, and the number
+/// of boxes.
+fn box_bins(w: usize, h: usize, per_octave: f64, wedges: usize) -> (Vec<Option<usize>>, usize) {
     let lowest = ((w.max(h) as f64).log2() * per_octave).floor() as usize;
     let bin = |i: usize| {
         let (fx, fy) = frequency(i, w, h);
@@ -252,16 +308,7 @@ fn box_field(
     };
     let bins_of: Vec<Option<usize>> = (0..w * h).map(bin).collect();
     let count = bins_of.iter().flatten().max().map_or(0, |m| m + 1);
-    let (mut power, mut bins) = (vec![0.0f64; count], vec![0usize; count]);
-    for (s, b) in spec.iter().zip(&bins_of) {
-        if let Some(j) = b {
-            power[*j] += s.norm_sqr() as f64;
-            bins[*j] += 1;
-        }
-    }
-    random_phase_field(w, h, seed, c, |i| {
-        bins_of[i].map(|j| (power[j] / bins[j].max(1) as f64).sqrt() as f32)
-    })
+    (bins_of, count)
 }
 
 /// An orientation profile per octave, fitted from the octave's angular moment
@@ -376,7 +423,7 @@ fn profiled_fields(
 /// Rung `rung` of the `--orient` ladder ([`ORIENT_RUNGS`]).
 fn synthesise_orient(rung: usize, src: &Photo, seed: u32) -> Photo {
     match rung {
-        0 => random_phase(src, seed),
+        0 => floor(src, seed),
         1 => synthesise_bands(1, src, seed),
         2 => synthesise_bands(4, src, seed),
         _ => {
@@ -397,7 +444,7 @@ fn synthesise_orient(rung: usize, src: &Photo, seed: u32) -> Photo {
 /// Rung `rung` of the `--bands` ladder ([`BAND_RUNGS`]).
 fn synthesise_bands(rung: usize, src: &Photo, seed: u32) -> Photo {
     if rung == 0 {
-        return random_phase(src, seed);
+        return floor(src, seed);
     }
     let (w, h) = (src.width, src.height);
     let m = model_of(src, seed);
@@ -568,10 +615,13 @@ fn main() {
     let colour_ladder = all.iter().any(|a| a == "--colour");
     let expected = all.iter().any(|a| a == "--expected");
     let rounds = all.iter().any(|a| a == "--rounds");
+    let marginal = all.iter().any(|a| a == "--marginals");
     let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
     let manifest = *args.first().expect("MANIFEST.tsv");
     let seeds: Vec<u32> = (1..=args.get(1).map_or(2, |s| s.parse().unwrap())).collect();
-    let names: &[&str] = if rounds {
+    let names: &[&str] = if marginal {
+        &MARGINAL_RUNGS
+    } else if rounds {
         &ROUNDS_RUNGS
     } else if expected {
         &EXPECTED_RUNGS
@@ -586,7 +636,9 @@ fn main() {
     };
     let photos = stochastic_photos(manifest);
     let table = run_ladder(&photos, &seeds, names.len(), &|rung, src, seed| {
-        if rounds {
+        if marginal {
+            synthesise_marginals(rung, src, seed)
+        } else if rounds {
             synthesise_rounds(rung, src, seed)
         } else if expected {
             synthesise_expected(rung, src, seed)
