@@ -137,6 +137,21 @@ pub struct PatchChoice {
     /// The source patch's structure cues ([`crate::cues::cues`], in the order of
     /// [`crate::cues::CUE_NAMES`]).
     pub photo_cues: [f32; crate::cues::CUES],
+    /// The numbers of the noise model's document as the ranking fitted it on this patch
+    /// ([`crate::noise_tone::numbers`], against [`crate::noise_tone::PARAMETER_BUDGET`]).
+    pub noise_numbers: usize,
+}
+
+/// [`crate::noise_tone::numbers`] of the noise model in a ranking (0 if it has none).
+fn noise_numbers(ranking: &[crate::retrieve::Suggestion]) -> usize {
+    ranking
+        .iter()
+        .filter_map(|c| match c.preview.as_ref().map(|p| &p.model) {
+            Some(crate::params::Model::Noise(m)) => Some(crate::noise_tone::numbers(m)),
+            _ => None,
+        })
+        .next()
+        .unwrap_or(0)
 }
 
 /// Most specks a render may have, in units of its photo's own ([`speck_ratio`]).
@@ -234,6 +249,7 @@ impl PhotoResult {
                         .collect(),
                     photo_specks: speck_fraction(run.source),
                     photo_cues: crate::cues::cues(run.source),
+                    noise_numbers: noise_numbers(run.ranking),
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -372,6 +388,9 @@ pub struct Summary {
     /// Per model (noise and each family, every patch's fitted candidate): renders, renders past
     /// [`SPECK_LIMIT`], the median and the largest [`speck_ratio`].
     pub specks_by_model: Vec<SpeckRow>,
+    /// The noise model's numbers per patch ([`PatchChoice::noise_numbers`]): the least, the
+    /// median and the most over the set's patches.
+    pub noise_numbers: [usize; 3],
 }
 
 /// One model's speck numbers over the set ([`Summary::specks_by_model`]).
@@ -517,6 +536,14 @@ impl Summary {
                 }
             })
             .collect();
+        let mut numbers: Vec<usize> = results
+            .iter()
+            .flat_map(|r| r.choices.iter().map(|c| c.noise_numbers))
+            .collect();
+        numbers.sort_unstable();
+        if let (Some(&least), Some(&most)) = (numbers.first(), numbers.last()) {
+            s.noise_numbers = [least, numbers[numbers.len() / 2], most];
+        }
         s
     }
 }
@@ -630,6 +657,7 @@ mod tests {
                     render_specks: if file == "a.png" { 0.01 } else { 0.004 },
                     pixels: 10_000,
                     photo_cues: [0.0; crate::cues::CUES],
+                    noise_numbers: if file == "a.png" { 60 } else { 100 },
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),
@@ -681,6 +709,8 @@ mod tests {
         assert!((brick.max_ratio - 101.0 / 41.0).abs() < 1e-9, "{brick:?}");
         assert_eq!((row("noise").renders, row("noise").over_limit), (4, 0));
         assert!((row("noise").median_ratio - 1.0).abs() < 1e-12);
+        // The noise model's numbers: 60 on the first photo's four patches, 100 elsewhere.
+        assert_eq!(s.noise_numbers, [60, 100, 100]);
     }
 
     #[test]

@@ -44,7 +44,8 @@
 //! distribution transfer), then further rounds along fixed rotations, fitted as the product
 //! fits its curve: what more rounds would buy before the parameter budget.
 //! With `--marginals` ([`marginals`]): box bands summed as Gaussian fields against the same
-//! bands each given the patch's own band marginal first (Heeger & Bergen's subband histograms).
+//! bands each given the patch's own band marginal first (Heeger & Bergen's subband histograms;
+//! `PROCTEX_LAB_SHAPE_ONLY`: the marginal's shape alone, each band keeping its own deviation).
 //!
 //! Every random-phase rung has exact amplitudes (each frequency's modulus exactly its box's, or
 //! the patch's own for the floor) unless `PROCTEX_LAB_GAUSSIAN` is set: then the white noise's

@@ -56,7 +56,17 @@ pub fn synthesise_marginals(rung: usize, src: &Photo, seed: u32) -> Photo {
                     own[i] = spec[i];
                 }
                 let signal: Vec<f32> = ifft2(own, w, h).iter().map(|z| z.re).collect();
-                rank_match(&field, &signal)
+                let shaped = rank_match(&field, &signal);
+                // Rank matching also gives the band the patch's own energy in this window,
+                // which no procedural noise has (its energy over a window scatters as the
+                // Gaussian field's does); `PROCTEX_LAB_SHAPE_ONLY` keeps the field's own
+                // deviation, so that only the marginal's shape is the patch's.
+                if std::env::var_os("PROCTEX_LAB_SHAPE_ONLY").is_some() {
+                    let gain = (deviation(&field) / deviation(&shaped).max(1e-30)) as f32;
+                    shaped.iter().map(|v| v * gain).collect()
+                } else {
+                    shaped
+                }
             } else {
                 field
             };
@@ -67,4 +77,11 @@ pub fn synthesise_marginals(rung: usize, src: &Photo, seed: u32) -> Photo {
         rank_match(&sum, &m.channels[c])
     });
     to_rgb(&m, &v, src.width, src.height)
+}
+
+/// The deviation of `v` about its mean.
+fn deviation(v: &[f32]) -> f64 {
+    let n = v.len().max(1) as f64;
+    let mean = v.iter().map(|&x| x as f64).sum::<f64>() / n;
+    (v.iter().map(|&x| (x as f64 - mean).powi(2)).sum::<f64>() / n).sqrt()
 }

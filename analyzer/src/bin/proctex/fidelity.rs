@@ -365,12 +365,13 @@ fn print_photo(r: &PhotoResult) {
             }
         };
         println!(
-            "  {:<12} {:<11} {judged:<22} top-3 {:<34} {:>7.0} ms  specks {:.2}×",
+            "  {:<12} {:<11} {judged:<22} top-3 {:<34} {:>7.0} ms  specks {:.2}×  noise model {} numbers",
             ch.patch,
             ch.chosen,
             ch.top3.join(", "),
             ch.analysis_ms,
-            speck_ratio(ch.render_specks, ch.photo_specks, ch.pixels)
+            speck_ratio(ch.render_specks, ch.photo_specks, ch.pixels),
+            ch.noise_numbers
         );
     }
 }
@@ -435,6 +436,11 @@ fn print_summary(s: &Summary, fold: Option<(usize, usize)>) {
         r.total,
         100.0 * r.fraction(),
         100.0 * r.standard_error
+    );
+    let [least, median, most] = s.noise_numbers;
+    println!(
+        "the noise model's numbers per patch: {least}–{most}, median {median} (budget {})",
+        proctex::noise_tone::PARAMETER_BUDGET
     );
     println!("specks per model (every patch's fitted candidate; ratio to the photo's):");
     for m in &s.specks_by_model {
