@@ -420,9 +420,9 @@ pub(crate) fn wrap_coord(p: f32, n: f32) -> f32 {
     p - n * (p / n).floor()
 }
 
-/// `i mod n` for a power-of-two tile side `n` (every tile is 128² or 64³): a mask, which the
-/// GPU twin also uses because integer division is slow on software rasterisers (it made
-/// `%` the costliest operation of the plane shader on SwiftShader).
+/// `i mod n` for a power-of-two tile side `n` (the 2D tile is 512², the 3D one 64³): a mask,
+/// which the GPU twin also uses because integer division is slow on software rasterisers (it
+/// made `%` the costliest operation of the plane shader on SwiftShader).
 #[inline]
 fn wrap_index(i: i32, n: i32) -> usize {
     debug_assert!(
