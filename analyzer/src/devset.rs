@@ -146,11 +146,10 @@ pub struct PatchChoice {
 fn noise_numbers(ranking: &[crate::retrieve::Suggestion]) -> usize {
     ranking
         .iter()
-        .filter_map(|c| match c.preview.as_ref().map(|p| &p.model) {
+        .find_map(|c| match c.preview.as_ref().map(|p| &p.model) {
             Some(crate::params::Model::Noise(m)) => Some(crate::noise_tone::numbers(m)),
             _ => None,
         })
-        .next()
         .unwrap_or(0)
 }
 

@@ -70,6 +70,7 @@ use proctex::render::{Prepared, colour, texture_noise, tile_for};
 use proctex::rng;
 use proctex::spectrum::{fft2_real, ifft2, spectrum_real};
 use realisation::{EXPECTED_RUNGS, ROUNDS_RUNGS, synthesise_expected, synthesise_rounds};
+use rustfft::num_complex::Complex32;
 
 const RUNGS: [&str; 7] = [
     "floor (full spectrum, exact)",
@@ -276,16 +277,25 @@ fn box_field(
 ) -> Vec<f32> {
     let spec = spectrum_real(chan, w, h, true);
     let (bins_of, count) = box_bins(w, h, per_octave, wedges);
+    let amplitude = box_amplitudes(&spec, &bins_of, count);
+    random_phase_field(w, h, seed, c, |i| bins_of[i].map(|j| amplitude[j]))
+}
+
+/// Each box's amplitude: the square root of the mean power of the spectrum `spec` over the FFT
+/// indices that [`box_bins`] put in it.
+fn box_amplitudes(spec: &[Complex32], bins_of: &[Option<usize>], count: usize) -> Vec<f32> {
     let (mut power, mut bins) = (vec![0.0f64; count], vec![0usize; count]);
-    for (s, b) in spec.iter().zip(&bins_of) {
+    for (s, b) in spec.iter().zip(bins_of) {
         if let Some(j) = b {
             power[*j] += s.norm_sqr() as f64;
             bins[*j] += 1;
         }
     }
-    random_phase_field(w, h, seed, c, |i| {
-        bins_of[i].map(|j| (power[j] / bins[j].max(1) as f64).sqrt() as f32)
-    })
+    power
+        .iter()
+        .zip(&bins)
+        .map(|(p, &n)| (p / n.max(1) as f64).sqrt() as f32)
+        .collect()
 }
 
 /// The box of every FFT index of a `w × h` image (`None`: the mean) for boxes of `per_octave`

@@ -10,9 +10,10 @@
 //!    filtered to the box: its band signal, heavy tails and skew included), then summed.
 
 use super::ladder::rank_match;
-use super::{box_bins, floor, model_of, random_phase_field, to_rgb};
+use super::{box_amplitudes, box_bins, floor, model_of, random_phase_field, to_rgb};
 use proctex::input::Photo;
 use proctex::spectrum::{ifft2, spectrum_real};
+use rustfft::num_complex::Complex32;
 
 pub const MARGINAL_RUNGS: [&str; 5] = [
     "floor (full spectrum)",
@@ -31,37 +32,38 @@ pub fn synthesise_marginals(rung: usize, src: &Photo, seed: u32) -> Photo {
     let m = model_of(src, seed);
     let wedges = if rung <= 2 { 1 } else { 4 };
     let matched = rung.is_multiple_of(2);
+    // Rank matching also gives a band the patch's own energy in this window, which no
+    // procedural noise has (its energy over a window scatters as the Gaussian field's does);
+    // `PROCTEX_LAB_SHAPE_ONLY` keeps the field's own deviation, so that only the marginal's
+    // shape is the patch's.
+    let shape_only = std::env::var_os("PROCTEX_LAB_SHAPE_ONLY").is_some();
     let (bins_of, count) = box_bins(w, h, 1.0, wedges);
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); count];
+    for (i, b) in bins_of.iter().enumerate() {
+        if let Some(j) = b {
+            members[*j].push(i);
+        }
+    }
     let v = std::array::from_fn(|c| {
         let spec = spectrum_real(&m.channels[c], w, h, true);
+        let amplitude = box_amplitudes(&spec, &bins_of, count);
         let mut sum = vec![0.0f32; w * h];
-        for j in 0..count {
-            let members: Vec<usize> = (0..w * h).filter(|&i| bins_of[i] == Some(j)).collect();
-            if members.is_empty() {
+        for (j, box_members) in members.iter().enumerate() {
+            if box_members.is_empty() {
                 continue;
             }
-            let power: f64 = members
-                .iter()
-                .map(|&i| spec[i].norm_sqr() as f64)
-                .sum::<f64>()
-                / members.len() as f64;
-            let amplitude = power.sqrt() as f32;
             // Each box its own draw: the seed's channel stream offset by the box.
             let field = random_phase_field(w, h, seed, c + 3 * (j + 1), |i| {
-                (bins_of[i] == Some(j)).then_some(amplitude)
+                (bins_of[i] == Some(j)).then_some(amplitude[j])
             });
             let band = if matched {
-                let mut own = vec![rustfft::num_complex::Complex32::default(); w * h];
-                for &i in &members {
+                let mut own = vec![Complex32::default(); w * h];
+                for &i in box_members {
                     own[i] = spec[i];
                 }
                 let signal: Vec<f32> = ifft2(own, w, h).iter().map(|z| z.re).collect();
                 let shaped = rank_match(&field, &signal);
-                // Rank matching also gives the band the patch's own energy in this window,
-                // which no procedural noise has (its energy over a window scatters as the
-                // Gaussian field's does); `PROCTEX_LAB_SHAPE_ONLY` keeps the field's own
-                // deviation, so that only the marginal's shape is the patch's.
-                if std::env::var_os("PROCTEX_LAB_SHAPE_ONLY").is_some() {
+                if shape_only {
                     let gain = (deviation(&field) / deviation(&shaped).max(1e-30)) as f32;
                     shaped.iter().map(|v| v * gain).collect()
                 } else {
