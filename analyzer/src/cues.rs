@@ -12,6 +12,7 @@
 use crate::gabor::{SIZE, descriptor_image};
 use crate::input::Photo;
 use crate::spectrum::{ifft2, spectrum_real};
+use crate::straight_lines::straight_lines;
 use rustfft::num_complex::Complex32;
 
 /// σ in pixels (of the [`SIZE`]² map) of the Gaussian whose blur is taken as shading.
@@ -29,10 +30,12 @@ pub const CUE_NAMES: [&str; CUES] = [
     "skewness",
     "bimodality",
     "edge_sparsity",
+    "straight_lines",
+    "crossing_lines",
 ];
 
 /// How many cues [`cues`] returns.
-pub const CUES: usize = 10;
+pub const CUES: usize = 12;
 
 /// The cues of `photo` (see the module docs), in the order of [`CUE_NAMES`]:
 /// - `lattice`: the highest local maximum of the detrended map's autocorrelation outside its
@@ -49,7 +52,10 @@ pub const CUES: usize = 10;
 ///   detail (Gaussian noise: 0; sparse joints and cracks: large);
 /// - `skewness`: of the detrended map (thin dark joints: negative);
 /// - `bimodality`: Otsu's between-class share of the variance (two tones: near 1);
-/// - `edge_sparsity`: the share of gradient energy in the strongest tenth of the pixels.
+/// - `edge_sparsity`: the share of gradient energy in the strongest tenth of the pixels;
+/// - `straight_lines`, `crossing_lines`: the strongest long straight line, in robust deviations
+///   of all lines, and the strongest line across it as a share of it
+///   ([`crate::straight_lines::straight_lines`]: joints, boards and panel edges).
 pub fn cues(photo: &Photo) -> [f32; CUES] {
     let map = luminance_map(photo);
     let detrended = detrended(&map);
@@ -64,6 +70,7 @@ pub fn cues(photo: &Photo) -> [f32; CUES] {
     let (lobe, elongation) = central_lobe(&acf);
     let peaks = lattice_peaks(&acf, &lobe);
     let (coherence, axis_alignment, edge_sparsity) = gradient_cues(&blur(&detrended, SIZE, 0.7));
+    let (lines, crossing) = straight_lines(&detrended);
     [
         peaks.0,
         peaks.1,
@@ -75,6 +82,8 @@ pub fn cues(photo: &Photo) -> [f32; CUES] {
         moment(&detrended, 3),
         bimodality(&map),
         edge_sparsity,
+        lines,
+        crossing,
     ]
 }
 

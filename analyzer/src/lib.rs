@@ -52,6 +52,7 @@ pub mod cues;
 pub mod db;
 pub mod distance;
 pub mod gabor;
+pub mod straight_lines;
 pub mod two_tone;
 
 // Layer: fitting a pattern's colours to a photo.

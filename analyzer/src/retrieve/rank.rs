@@ -125,7 +125,8 @@ impl Suggester {
     /// distance moved onto the best family's scale (minus the best family's texture − score
     /// difference, minus the margin) and it takes its place among the fitted families by it, so
     /// one sort orders them; it never follows an unfitted family. On a photo with a dark network
-    /// ([`DARK_NETWORK_SKEWNESS`]) the noise model ranks right after the best family instead.
+    /// ([`DARK_NETWORK_SKEWNESS`]) the noise model ranks right after the fitted families instead
+    /// ([`RENDER_ORDERED`] of them: the top three are families).
     pub fn suggestions(&self, db: &Db) -> Vec<Suggestion> {
         self.ranked(db, usize::MAX)
     }
@@ -201,8 +202,14 @@ impl Suggester {
         let rest = families.split_off(ordered);
         let mut out = vec![noise];
         out[0].score = match families.first() {
-            // Right after the best family: still offered, never first.
-            Some(best) if self.dark_network => best.score.next_up(),
+            // After the fitted families: still offered, never first, and not among the first
+            // three where the fitted families fill them (the rule's reason holds for every
+            // family: the noise model draws the photo's joints as grain).
+            Some(_) if self.dark_network => families
+                .last()
+                .expect("the list has a first family")
+                .score
+                .next_up(),
             Some(best) => {
                 let best_distance = best.distance.expect("the best family is fitted");
                 distance - (best_distance - best.score) - margin
