@@ -1,4 +1,4 @@
-//! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`): the
+//! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`, `corpus_lab`): the
 //! quadrant patches of the labelled photos, and the photo-like augmentation of a clean pattern.
 
 // Not every laboratory fits a discriminant.
@@ -26,6 +26,25 @@ pub struct Patch {
     pub photo: Photo,
 }
 
+/// The four quadrants of a photo, as the development set's patches are cut: top-left,
+/// top-right, bottom-left, bottom-right.
+pub fn quadrants(photo: &Photo) -> Vec<Photo> {
+    let (hw, hh) = (photo.width / 2, photo.height / 2);
+    [(0, 0), (1, 0), (0, 1), (1, 1)]
+        .iter()
+        .map(|&(qx, qy)| {
+            photo
+                .crop(Crop {
+                    x: qx * hw,
+                    y: qy * hh,
+                    w: hw,
+                    h: hh,
+                })
+                .unwrap()
+        })
+        .collect()
+}
+
 /// The four quadrants of every photo in the development set at `dir`.
 pub fn load(dir: &str) -> Vec<Patch> {
     let text = std::fs::read_to_string(format!("{dir}/manifest.tsv")).unwrap();
@@ -33,20 +52,12 @@ pub fn load(dir: &str) -> Vec<Patch> {
     for e in parse_manifest(&text).unwrap() {
         let bytes = std::fs::read(format!("{dir}/{}", e.file)).unwrap();
         let photo = Photo::decode(&bytes).unwrap();
-        let (hw, hh) = (photo.width / 2, photo.height / 2);
-        for (qx, qy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+        for q in quadrants(&photo) {
             out.push(Patch {
                 file: e.file.clone(),
                 structured: e.category == Category::Structured,
                 labels: e.families.clone().unwrap_or_default(),
-                photo: photo
-                    .crop(Crop {
-                        x: qx * hw,
-                        y: qy * hh,
-                        w: hw,
-                        h: hh,
-                    })
-                    .unwrap(),
+                photo: q,
             });
         }
     }

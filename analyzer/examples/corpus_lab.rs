@@ -1,0 +1,333 @@
+//! Training-corpus laboratory: a family discriminant trained on labelled real textures (other
+//! games' Debian packages, `tools/corpus/labels.tsv`) instead of rendered patterns, scored on
+//! the development set, which it never sees (docs/devset.md, "A family classifier trained on
+//! real textures").
+//!
+//! - `corpus_lab sheet LIST DIR OUT START COUNT`: the textures LIST[START..START+COUNT] (file
+//!   names in DIR) as a PNG contact sheet, 8 per row, 96 px each, row-major: for labelling by eye.
+//! - `corpus_lab dds DIR OUT`: every DXT1/DXT5 DDS file of DIR decoded to OUT as a PNG at most 512
+//!   wide (0 A.D.'s terrains; `tools/corpus/extract.py` prints this step).
+//! - `corpus_lab eval LABELS DIR DEVDIR`: LABELS' lines `file<TAB>family[<TAB>package]` (a pattern
+//!   family or `noise`); the discriminant's setting chosen by cross-validation over the corpus,
+//!   then trained on all of it and scored on DEVDIR's patches. `CORPUS_LAB_DUMP=1` writes each
+//!   patch's class order to stderr; `CORPUS_LAB_ALSO=DIR` also prints each quadrant's nearest
+//!   class and family for the PNG photos of DIR (the shipped samples, which have no labels).
+
+mod lab_common;
+
+use lab_common::features;
+use lab_common::lda::{fit, project, scores};
+use proctex::db::query;
+use proctex::gabor::Descriptor;
+use proctex::input::Photo;
+use proctex::pattern::PatternKind;
+use proctex::two_tone::two_tone;
+
+const THUMB: usize = 96;
+const COLS: usize = 8;
+
+fn sheet(list: &str, dir: &str, out: &str, start: usize, count: usize) {
+    let names: Vec<String> = std::fs::read_to_string(list)
+        .unwrap()
+        .lines()
+        .map(str::to_string)
+        .collect();
+    let names = &names[start.min(names.len())..(start + count).min(names.len())];
+    let rows = names.len().div_ceil(COLS);
+    let (w, h) = (COLS * (THUMB + 4), rows * (THUMB + 4));
+    let mut img = image::RgbImage::from_pixel(w as u32, h as u32, image::Rgb([255, 0, 255]));
+    for (i, n) in names.iter().enumerate() {
+        let photo = Photo::decode(&std::fs::read(format!("{dir}/{n}")).unwrap()).unwrap();
+        let side = photo.width.min(photo.height) as usize;
+        let (x0, y0) = (i % COLS * (THUMB + 4) + 2, i / COLS * (THUMB + 4) + 2);
+        for y in 0..THUMB {
+            for x in 0..THUMB {
+                let (sx, sy) = (x * side / THUMB, y * side / THUMB);
+                let c = photo.pixels[sy * photo.width as usize + sx];
+                let px = [0, 1, 2].map(|k| (c[k].clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0) as u8);
+                img.put_pixel((x0 + x) as u32, (y0 + y) as u32, image::Rgb(px));
+            }
+        }
+    }
+    img.save(out).unwrap();
+}
+
+/// The descriptor of a patch as the product queries it (its two-tone structure map).
+fn describe(photo: &Photo) -> Descriptor {
+    let map = two_tone(photo).structure;
+    query(&map, photo.width as usize, photo.height as usize).0
+}
+
+fn class_names() -> Vec<&'static str> {
+    let mut v: Vec<&str> = PatternKind::ALL.iter().map(|k| k.name()).collect();
+    v.push("noise");
+    v
+}
+
+/// A labelled training texture's four quadrant descriptors.
+struct Texture {
+    file: String,
+    class: usize,
+    quadrants: Vec<Descriptor>,
+}
+
+fn load_corpus(labels: &str, dir: &str, names: &[&str]) -> Vec<Texture> {
+    let mut out = Vec::new();
+    for line in std::fs::read_to_string(labels).unwrap().lines() {
+        if line.starts_with('#') {
+            continue;
+        }
+        let mut it = line.split('\t');
+        let (file, family) = (it.next().unwrap(), it.next().unwrap_or("").trim());
+        let Some(class) = names.iter().position(|n| *n == family) else {
+            continue;
+        };
+        let photo = Photo::decode(&std::fs::read(format!("{dir}/{file}")).unwrap()).unwrap();
+        let quadrants = lab_common::quadrants(&photo).iter().map(describe).collect();
+        out.push(Texture {
+            file: file.to_string(),
+            class,
+            quadrants,
+        });
+    }
+    out
+}
+
+/// A discriminant over `textures` (each quadrant in both tone orientations) and the classes
+/// it has examples of.
+struct Classifier {
+    model: lab_common::lda::Model,
+    present: Vec<usize>,
+    harmonics: usize,
+}
+
+impl Classifier {
+    fn train(textures: &[&Texture], classes: usize, harmonics: usize, ridge: f64) -> Classifier {
+        let present: Vec<usize> = (0..classes)
+            .filter(|&c| textures.iter().any(|t| t.class == c))
+            .collect();
+        let mut xs = Vec::new();
+        for t in textures {
+            let k = present.iter().position(|&p| p == t.class).unwrap();
+            for d in &t.quadrants {
+                xs.push((features(d, harmonics), k));
+                xs.push((features(&d.swapped(), harmonics), k));
+            }
+        }
+        let model = fit(&xs, present.len(), ridge, present.len() - 1);
+        Classifier {
+            model,
+            present,
+            harmonics,
+        }
+    }
+
+    /// The classes nearest first (either tone orientation of the query).
+    fn order(&self, d: &Descriptor) -> Vec<usize> {
+        let score = |d: &Descriptor| {
+            scores(
+                &self.model,
+                &project(&self.model.proj, &features(d, self.harmonics)),
+                self.present.len(),
+                0,
+            )
+        };
+        let (a, b) = (score(d), score(&d.swapped()));
+        let s: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x.min(*y)).collect();
+        let mut order: Vec<usize> = (0..s.len()).collect();
+        order.sort_by(|&x, &y| s[x].total_cmp(&s[y]));
+        order.iter().map(|&i| self.present[i]).collect()
+    }
+}
+
+const SETTINGS: [(usize, f64); 6] = [
+    (2, 1e-3),
+    (2, 1e-1),
+    (2, 1.0),
+    (4, 1e-3),
+    (4, 1e-1),
+    (4, 1.0),
+];
+const CORPUS_FOLDS: usize = 4;
+
+fn eval(labels: &str, dir: &str, dev: &str) {
+    let names = class_names();
+    let noise = names.len() - 1;
+    let corpus = load_corpus(labels, dir, &names);
+    let counts: Vec<usize> = (0..names.len())
+        .map(|c| corpus.iter().filter(|t| t.class == c).count())
+        .collect();
+    println!(
+        "training textures per class: {:?}",
+        names.iter().zip(&counts).collect::<Vec<_>>()
+    );
+    // The setting chosen by cross-validation over the corpus's textures alone: the most
+    // structured quadrants whose nearest family is the label.
+    let mut best = (0usize, SETTINGS[0]);
+    for &(harmonics, ridge) in &SETTINGS {
+        let (mut right, mut structured, mut kept, mut stochastic) = (0, 0, 0, 0);
+        for f in 0..CORPUS_FOLDS {
+            let fold = |t: &Texture| proctex::devset::fold_of(&t.file, CORPUS_FOLDS) == f;
+            let train: Vec<&Texture> = corpus.iter().filter(|t| !fold(t)).collect();
+            let c = Classifier::train(&train, names.len(), harmonics, ridge);
+            for t in corpus.iter().filter(|t| fold(t)) {
+                for d in &t.quadrants {
+                    let order = c.order(d);
+                    if t.class == noise {
+                        stochastic += 1;
+                        kept += (order[0] == noise) as usize;
+                    } else {
+                        structured += 1;
+                        right += (order.iter().find(|&&k| k != noise) == Some(&t.class)) as usize;
+                    }
+                }
+            }
+        }
+        println!(
+            "corpus, {CORPUS_FOLDS} folds held out: harmonics {harmonics} ridge {ridge}: family {right}/{structured}, noise kept {kept}/{stochastic}"
+        );
+        if right > best.0 {
+            best = (right, (harmonics, ridge));
+        }
+    }
+    let (harmonics, ridge) = best.1;
+    let all: Vec<&Texture> = corpus.iter().collect();
+    let c = Classifier::train(&all, names.len(), harmonics, ridge);
+    let (mut first, mut top3, mut family, mut ns, mut served, mut nt) = (0, 0, 0, 0, 0, 0);
+    for p in lab_common::load(dev) {
+        let order = c.order(&describe(&p.photo));
+        let name = |k: usize| names[k];
+        let labelled = |k: usize| p.labels.iter().any(|l| l == name(k));
+        if std::env::var("CORPUS_LAB_DUMP").is_ok() {
+            let ranked: Vec<&str> = order.iter().map(|&k| name(k)).collect();
+            eprintln!("dump\t{}\t{}", p.file, ranked.join(","));
+        }
+        if p.structured {
+            ns += 1;
+            first += labelled(order[0]) as usize;
+            top3 += order.iter().take(3).any(|&k| labelled(k)) as usize;
+            family += order
+                .iter()
+                .find(|&&k| k != noise)
+                .is_some_and(|&k| labelled(k)) as usize;
+        } else {
+            nt += 1;
+            served += (order[0] == noise) as usize;
+        }
+    }
+    println!(
+        "development set (never trained on), harmonics {harmonics} ridge {ridge} (chosen on the corpus): structured first {first}/{ns}, top three {top3}/{ns}, nearest family labelled {family}/{ns}; stochastic → noise {served}/{nt}"
+    );
+    if let Some(other) = std::env::var_os("CORPUS_LAB_ALSO") {
+        // Unlabelled photos (the shipped samples): each quadrant's nearest class and family.
+        let dir = other.to_string_lossy().to_string();
+        let mut files: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| e.ok()?.file_name().into_string().ok())
+            .filter(|f| f.ends_with(".png"))
+            .collect();
+        files.sort();
+        for f in files {
+            let photo = Photo::decode(&std::fs::read(format!("{dir}/{f}")).unwrap()).unwrap();
+            let mut line = Vec::new();
+            for q in lab_common::quadrants(&photo) {
+                let order = c.order(&describe(&q));
+                let fam = order.iter().find(|&&k| k != noise).unwrap();
+                line.push(format!("{}/{}", names[order[0]], names[*fam]));
+            }
+            println!("{f}: {}", line.join(" "));
+        }
+    }
+}
+
+/// An RGB565 colour as 8-bit RGB.
+fn rgb565(c: u16) -> [f32; 3] {
+    let r = ((c >> 11) & 31) as f32 / 31.0;
+    let g = ((c >> 5) & 63) as f32 / 63.0;
+    let b = (c & 31) as f32 / 31.0;
+    [r, g, b]
+}
+
+/// The largest mip level of a DXT1 or DXT5 DDS file no wider than `max_side`, as RGB (0–1,
+/// sRGB-encoded values), with its side; `None` for other formats.
+fn decode_dds(b: &[u8], max_side: usize) -> Option<(usize, Vec<[f32; 3]>)> {
+    let u32_at = |i: usize| u32::from_le_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]) as usize;
+    let (h, w) = (u32_at(12), u32_at(16));
+    let block = match &b[84..88] {
+        b"DXT1" => 8,
+        b"DXT5" => 16,
+        _ => return None,
+    };
+    if w != h || w < 128 {
+        return None;
+    }
+    let (mut side, mut offset) = (w, 128);
+    while side > max_side {
+        offset += (side / 4) * (side / 4) * block;
+        side /= 2;
+    }
+    let mut out = vec![[0.0f32; 3]; side * side];
+    for by in 0..side / 4 {
+        for bx in 0..side / 4 {
+            let at = offset + (by * (side / 4) + bx) * block + block - 8;
+            let c0 = u16::from_le_bytes([b[at], b[at + 1]]);
+            let c1 = u16::from_le_bytes([b[at + 2], b[at + 3]]);
+            let (p0, p1) = (rgb565(c0), rgb565(c1));
+            let mix = |t: f32| -> [f32; 3] { [0, 1, 2].map(|k| p0[k] * (1.0 - t) + p1[k] * t) };
+            // DXT1's three-colour mode (c0 <= c1) has black for its fourth; DXT5 has none.
+            let palette = if c0 > c1 || block == 16 {
+                [p0, p1, mix(1.0 / 3.0), mix(2.0 / 3.0)]
+            } else {
+                [p0, p1, mix(0.5), [0.0; 3]]
+            };
+            let bits = u32::from_le_bytes([b[at + 4], b[at + 5], b[at + 6], b[at + 7]]);
+            for i in 0..16 {
+                let (x, y) = (bx * 4 + i % 4, by * 4 + i / 4);
+                out[y * side + x] = palette[((bits >> (2 * i)) & 3) as usize];
+            }
+        }
+    }
+    Some((side, out))
+}
+
+/// Every DXT1/DXT5 DDS file in `dir` written to `out` as a PNG at most 512 wide.
+fn dds(dir: &str, out: &str) {
+    std::fs::create_dir_all(out).unwrap();
+    let mut n = 0;
+    for e in std::fs::read_dir(dir).unwrap() {
+        let path = e.unwrap().path();
+        let Some((side, px)) = decode_dds(&std::fs::read(&path).unwrap(), 512) else {
+            continue;
+        };
+        let mut img = image::RgbImage::new(side as u32, side as u32);
+        for (i, c) in px.iter().enumerate() {
+            let v = c.map(|x| (x * 255.0).round() as u8);
+            img.put_pixel((i % side) as u32, (i / side) as u32, image::Rgb(v));
+        }
+        let file = path.file_name().unwrap().to_string_lossy().to_string();
+        let name = [".dds.cached.dds", ".png.cached.dds", ".dds"]
+            .iter()
+            .find_map(|e| file.strip_suffix(e))
+            .unwrap_or(&file)
+            .to_string();
+        img.save(format!("{out}/{name}.png")).unwrap();
+        n += 1;
+    }
+    eprintln!("{n} textures decoded");
+}
+
+fn main() {
+    let a: Vec<String> = std::env::args().collect();
+    match a[1].as_str() {
+        "sheet" => sheet(
+            &a[2],
+            &a[3],
+            &a[4],
+            a[5].parse().unwrap(),
+            a[6].parse().unwrap(),
+        ),
+        "eval" => eval(&a[2], &a[3], &a[4]),
+        "dds" => dds(&a[2], &a[3]),
+        _ => panic!("sheet | eval"),
+    }
+}

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Builds the family-classifier laboratory's training corpus: downloads the Debian packages that
+tools/corpus/labels.tsv names (apt-get download; Debian's archive is one of the registries this
+project's machines reach), and writes every labelled file into OUT under the name the labels use.
+0 A.D.'s terrain textures are DXT-compressed DDS files: they are written as OUT/dds/*.dds and
+decoded to PNG by `corpus_lab dds` (run after this script; the command is printed).
+
+Names: 0ad-data `art/textures/terrain/types/a/b.png.cached.dds` -> `a__b.png`;
+nexuiz-textures `textures/a/b.jpg` -> `a__b.jpg`; redeclipse-data and supertuxkart-data
+`.../dir/file` -> `re__dir__file` and `stk__dir__file`.
+
+Usage: tools/corpus/extract.py OUT [--cache DIR]   (the packages are about 3.3 GB together)
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import zipfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def labelled():
+    by_package = {}
+    for line in open(os.path.join(HERE, "labels.tsv")):
+        if line.startswith("#") or not line.strip():
+            continue
+        name, _family, package = line.rstrip("\n").split("\t")
+        by_package.setdefault(package, set()).add(name)
+    return by_package
+
+
+def download(package, cache):
+    for f in os.listdir(cache):
+        if f.startswith(package + "_") and f.endswith(".deb"):
+            return os.path.join(cache, f)
+    subprocess.run(["apt-get", "download", package], cwd=cache, check=True,
+                   stdout=subprocess.DEVNULL)
+    return download(package, cache)
+
+
+def extract_member(deb, member, into):
+    """One file of a .deb's data archive, extracted under `into`; its path there."""
+    tar = subprocess.Popen(["dpkg-deb", "--fsys-tarfile", deb], stdout=subprocess.PIPE)
+    subprocess.run(["tar", "-x", "-C", into, "." + member], stdin=tar.stdout, check=True)
+    tar.wait()
+    return os.path.join(into, member.lstrip("/"))
+
+
+def from_zip(path, prefix, rename, wanted, out):
+    found = 0
+    with zipfile.ZipFile(path) as z:
+        for n in z.namelist():
+            if not n.startswith(prefix):
+                continue
+            flat = rename(n[len(prefix):].replace("/", "__"))
+            if flat in wanted:
+                with open(os.path.join(out, flat), "wb") as f:
+                    f.write(z.read(n))
+                found += 1
+    return found
+
+
+def from_tree(deb, tag, wanted, out):
+    found = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run(["dpkg-deb", "-x", deb, tmp], check=True)
+        for d, _, files in os.walk(tmp):
+            for f in files:
+                flat = f"{tag}__{os.path.basename(d)}__{f}"
+                if flat in wanted:
+                    with open(os.path.join(d, f), "rb") as src, \
+                            open(os.path.join(out, flat), "wb") as dst:
+                        dst.write(src.read())
+                    found += 1
+    return found
+
+
+def main():
+    args = sys.argv[1:]
+    out = os.path.abspath(args[0])
+    cache = os.path.abspath(args[args.index("--cache") + 1]) if "--cache" in args else out + "-debs"
+    os.makedirs(os.path.join(out, "dds"), exist_ok=True)
+    os.makedirs(cache, exist_ok=True)
+    for package, wanted in sorted(labelled().items()):
+        deb = download(package, cache)
+        with tempfile.TemporaryDirectory() as tmp:
+            if package == "0ad-data":
+                z = extract_member(deb, "/usr/share/games/0ad/mods/public/public.zip", tmp)
+                # Decoded names drop the ".dds.cached.dds" or ".png.cached.dds" and end ".png".
+                stems = {w[: -len(".png")] for w in wanted}
+
+                def dds_name(flat):
+                    for ending in (".dds.cached.dds", ".png.cached.dds"):
+                        if flat.endswith(ending) and flat[: -len(ending)] in stems:
+                            return flat[: -len(ending)] + ".dds"
+                    return None
+
+                found = from_zip(z, "art/textures/terrain/types/", dds_name,
+                                 {s + ".dds" for s in stems}, os.path.join(out, "dds"))
+            elif package == "nexuiz-textures":
+                z = extract_member(deb, "/usr/share/games/nexuiz/data/textures.pk3", tmp)
+                found = from_zip(z, "textures/", lambda flat: flat, wanted, out)
+            else:
+                tag = "re" if package == "redeclipse-data" else "stk"
+                found = from_tree(deb, tag, wanted, out)
+        print(f"{package}: {found} of {len(wanted)} labelled files")
+    print(f"then: cargo run --release -p proctex-analyzer --example corpus_lab -- dds "
+          f"{os.path.join(out, 'dds')} {out}")
+
+
+if __name__ == "__main__":
+    main()
