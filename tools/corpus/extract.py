@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Builds the family-classifier laboratory's training corpus: downloads the Debian packages that
-tools/corpus/labels.tsv names (apt-get download; Debian's archive is one of the registries this
+tools/corpus/labels*.tsv name (apt-get download; Debian's archive is one of the registries this
 project's machines reach), and writes every labelled file into OUT under the name the labels use.
 0 A.D.'s terrain textures are DXT-compressed DDS files: they are written as OUT/dds/*.dds and
 decoded to PNG by `corpus_lab dds` (run after this script; the command is printed).
@@ -21,12 +21,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def labelled():
+    """The labelled files of every labels*.tsv here, by package."""
     by_package = {}
-    for line in open(os.path.join(HERE, "labels.tsv")):
-        if line.startswith("#") or not line.strip():
-            continue
-        name, _family, package = line.rstrip("\n").split("\t")
-        by_package.setdefault(package, set()).add(name)
+    for labels in sorted(f for f in os.listdir(HERE) if f.startswith("labels") and f.endswith(".tsv")):
+        for line in open(os.path.join(HERE, labels)):
+            if line.startswith("#") or not line.strip():
+                continue
+            name, _family, package = line.rstrip("\n").split("\t")
+            by_package.setdefault(package, set()).add(name)
     return by_package
 
 
