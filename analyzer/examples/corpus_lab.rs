@@ -11,7 +11,9 @@
 //!   family or `noise`); the discriminant's setting chosen by cross-validation over the corpus,
 //!   then trained on all of it and scored on DEVDIR's patches. `CORPUS_LAB_DUMP=1` writes each
 //!   patch's class order to stderr; `CORPUS_LAB_ALSO=DIR` also prints each quadrant's nearest
-//!   class and family for the PNG photos of DIR (the shipped samples, which have no labels).
+//!   class and family for the PNG photos of DIR (the shipped samples, which have no labels);
+//!   `CORPUS_LAB_BOOTSTRAP=N` first scores N corpora drawn from the labelled textures with
+//!   replacement (the spread of the development set's count over the corpus's sampling).
 
 mod lab_common;
 
@@ -150,6 +152,50 @@ const SETTINGS: [(usize, f64); 6] = [
 ];
 const CORPUS_FOLDS: usize = 4;
 
+/// How much the development set's nearest-family count moves with the corpus's sampling: `n`
+/// corpora drawn from the labelled textures with replacement (as many as there are), each trained
+/// with the chosen setting and scored on the development set's structured patches.
+fn bootstrap(
+    corpus: &[Texture],
+    dev: &[(lab_common::Patch, Descriptor)],
+    n: u32,
+    harmonics: usize,
+    ridge: f64,
+) {
+    let noise = class_names().len() - 1;
+    let mut counts = Vec::new();
+    for b in 0..n {
+        let draw: Vec<&Texture> = (0..corpus.len() as u32)
+            .map(|i| {
+                let u = proctex::rng::uniform(b + 1, 7, i);
+                &corpus[((u * corpus.len() as f64) as usize).min(corpus.len() - 1)]
+            })
+            .collect();
+        let c = Classifier::train(&draw, class_names().len(), harmonics, ridge);
+        let right = dev
+            .iter()
+            .filter(|(p, _)| p.structured)
+            .filter(|(p, d)| {
+                let names = class_names();
+                c.order(d)
+                    .iter()
+                    .find(|&&k| k != noise)
+                    .is_some_and(|&k| p.labels.iter().any(|l| l == names[k]))
+            })
+            .count();
+        counts.push(right as f64);
+    }
+    let m = counts.iter().sum::<f64>() / counts.len() as f64;
+    let sd = (counts.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (counts.len() as f64 - 1.0))
+        .sqrt();
+    let (lo, hi) = counts
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+    println!(
+        "bootstrap ({n} corpora drawn with replacement): nearest family labelled {m:.1} ± {sd:.1} (sd), {lo}–{hi} of 100"
+    );
+}
+
 fn eval(labels: &str, dir: &str, dev: &str) {
     let names = class_names();
     let noise = names.len() - 1;
@@ -191,11 +237,24 @@ fn eval(labels: &str, dir: &str, dev: &str) {
         }
     }
     let (harmonics, ridge) = best.1;
+    let dev_patches: Vec<(lab_common::Patch, Descriptor)> = lab_common::load(dev)
+        .into_iter()
+        .map(|p| {
+            let d = describe(&p.photo);
+            (p, d)
+        })
+        .collect();
+    if let Some(n) = std::env::var("CORPUS_LAB_BOOTSTRAP")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        bootstrap(&corpus, &dev_patches, n, harmonics, ridge);
+    }
     let all: Vec<&Texture> = corpus.iter().collect();
     let c = Classifier::train(&all, names.len(), harmonics, ridge);
     let (mut first, mut top3, mut family, mut ns, mut served, mut nt) = (0, 0, 0, 0, 0, 0);
-    for p in lab_common::load(dev) {
-        let order = c.order(&describe(&p.photo));
+    for (p, d) in &dev_patches {
+        let order = c.order(d);
         let name = |k: usize| names[k];
         let labelled = |k: usize| p.labels.iter().any(|l| l == name(k));
         if std::env::var("CORPUS_LAB_DUMP").is_ok() {
