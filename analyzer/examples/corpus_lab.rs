@@ -162,7 +162,8 @@ fn bootstrap(
     harmonics: usize,
     ridge: f64,
 ) {
-    let noise = class_names().len() - 1;
+    let names = class_names();
+    let noise = names.len() - 1;
     let mut counts = Vec::new();
     for b in 0..n {
         let draw: Vec<&Texture> = (0..corpus.len() as u32)
@@ -171,12 +172,11 @@ fn bootstrap(
                 &corpus[((u * corpus.len() as f64) as usize).min(corpus.len() - 1)]
             })
             .collect();
-        let c = Classifier::train(&draw, class_names().len(), harmonics, ridge);
+        let c = Classifier::train(&draw, names.len(), harmonics, ridge);
         let right = dev
             .iter()
             .filter(|(p, _)| p.structured)
             .filter(|(p, d)| {
-                let names = class_names();
                 c.order(d)
                     .iter()
                     .find(|&&k| k != noise)
