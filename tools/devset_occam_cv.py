@@ -37,6 +37,25 @@ def patch_overall(fid, i):
             + d["structure"] / max(h["structure"], 1e-9)) / 3
 
 
+def tally_orders(pts, order_of):
+    """Labelled first and top three of the structured patches, served stochastic ones, for the
+    orders `order_of(pt)` gives (names, first first). A stochastic patch is served when the noise
+    model is first, or the family the run chose and measured no farther than the noise model
+    (pt["chosen"], pt["family_ok"]). Returns (labelled, top3, structured, served, stochastic)."""
+    lab = top3 = served = ns = nt = 0
+    for pt in pts:
+        o = order_of(pt)
+        if pt["category"] == "structured":
+            ns += 1
+            lab += o[0] in pt["labels"]
+            top3 += any(n in pt["labels"] for n in o[:3])
+        else:
+            nt += 1
+            served += o[0] == "noise" or (o[0] == pt["chosen"] and (
+                pt["chosen"] == "noise" or pt["family_ok"]))
+    return lab, top3, ns, served, nt
+
+
 def patches(photos, current):
     """(photo file, category, labels, the families' ranking rows, per-occam chooser,
     served-if-family) per patch."""

@@ -33,7 +33,7 @@ import json
 import math
 import sys
 
-from devset_occam_cv import fold_of, patch_overall
+from devset_occam_cv import fold_of, patch_overall, tally_orders
 
 CUE_NAMES = ["lattice", "lattice2", "lobe_elongation", "coherence", "axis_alignment",
              "kurtosis", "kurtosis_fine", "skewness", "bimodality", "edge_sparsity",
@@ -151,18 +151,7 @@ def order(pt, use):
 
 
 def tally(pts, use):
-    lab = top3 = served = ns = nt = 0
-    for pt in pts:
-        o = order(pt, use)
-        if pt["category"] == "structured":
-            ns += 1
-            lab += o[0] in pt["labels"]
-            top3 += any(n in pt["labels"] for n in o[:3])
-        else:
-            nt += 1
-            served += o[0] == "noise" or (o[0] == pt["chosen"] and (
-                pt["chosen"] == "noise" or pt["family_ok"]))
-    return lab, top3, ns, served, nt
+    return tally_orders(pts, lambda pt: order(pt, use))
 
 
 def candidates(pts, kinds):

@@ -78,7 +78,7 @@ dbReady.catch(() => {}); // reported per photo, below
 // started (this worker takes from the front, the helpers from the back); `inflight`: families
 // at the helpers; `waiting`: this worker has nothing left to refine and waits for them.
 // Tasks are `{ kind: 'refine', family }`; once the refinement is over (`finished`),
-// `{ kind: 'order', family }`: the fits of the families nearest by structure, whose renders
+// `{ kind: 'order', family }`: the fits of the families the classifier puts first, whose renders
 // order the list (`orderFits()`), while this worker fits the noise model (`ordering`: { noise,
 // stored, helped, done }); once the list is ranked and a model family is its best, `{ kind: 'fit',
 // index, gen }`: the final fit of the adopted model (step 6 of
@@ -451,7 +451,7 @@ function postSuggestions(s, rows, thumbs, best) {
   fitRows(s);
 }
 
-// The rows that the ranking did not fit (every family but those nearest by structure: the
+// The rows that the ranking did not fit (every family but those that order the list: the
 // order does not depend on them), one per macrotask, so that a new photo, a crop or a click is
 // not kept waiting; each row's texture distance and thumbnail follow the list.
 function fitRows(s) {

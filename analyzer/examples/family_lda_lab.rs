@@ -8,9 +8,9 @@ mod lab_common;
 
 use lab_common::{Tally, ordered};
 
-use lab_common::features;
 use lab_common::lda::{fit, project, scores};
 use proctex::db::{Db, query};
+use proctex::family_classifier::features;
 use proctex::gabor::{Descriptor, describe};
 use proctex::pattern::PatternKind;
 use proctex::two_tone::two_tone;

@@ -140,6 +140,9 @@ pub struct PatchChoice {
     /// The numbers of the noise model's document as the ranking fitted it on this patch
     /// ([`crate::noise_tone::numbers`], against [`crate::noise_tone::PARAMETER_BUDGET`]).
     pub noise_numbers: usize,
+    /// The family classifier's classes for the source patch, nearest first (families' names
+    /// and `noise`; [`crate::retrieve::classify`]).
+    pub classifier: Vec<String>,
 }
 
 /// [`crate::noise_tone::numbers`] of the noise model in a ranking (0 if it has none).
@@ -249,6 +252,10 @@ impl PhotoResult {
                     photo_specks: speck_fraction(run.source),
                     photo_cues: crate::cues::cues(run.source),
                     noise_numbers: noise_numbers(run.ranking),
+                    classifier: crate::retrieve::classify(run.source)
+                        .into_iter()
+                        .map(|(c, _)| c.map_or("noise", |k| k.name()).to_string())
+                        .collect(),
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -657,6 +664,7 @@ mod tests {
                     pixels: 10_000,
                     photo_cues: [0.0; crate::cues::CUES],
                     noise_numbers: if file == "a.png" { 60 } else { 100 },
+                    classifier: Vec::new(),
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

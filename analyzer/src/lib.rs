@@ -51,6 +51,8 @@ pub mod pyramid;
 pub mod cues;
 pub mod db;
 pub mod distance;
+pub mod family_classifier;
+mod family_classifier_table;
 pub mod gabor;
 pub mod straight_lines;
 pub mod two_tone;

@@ -4,14 +4,15 @@
 //! 1. The photo's two-tone structure map ([`crate::two_tone`]) gives the query descriptor
 //!    ([`crate::gabor`]); the database ([`crate::db`]) gives each pattern family's nearest
 //!    entries over rotations and both tone orientations (the two-tone paper's retrieval).
-//! 2. The families that could reach the top three are refined by Nelder–Mead on the bare
-//!    pattern's *structure distance* to the photo's map ([`crate::refine`]; Bourque & Dudek).
-//! 3. The nearest families by structure and the noise model are fitted to the photo
+//! 2. A classifier trained on real textures ([`crate::family_classifier`]) orders the families
+//!    it knows; its first three are refined by Nelder–Mead on the bare pattern's *structure
+//!    distance* to the photo's map ([`crate::refine`]; Bourque & Dudek).
+//! 3. Those families and the noise model are fitted to the photo
 //!    ([`crate::structure::fit_structured`]: ramp and residual; Lagae's analysis) on a reduced
 //!    copy of it ([`RANK_SIZE`]), rendered, projected on the photo's own tone line and
 //!    described: their *texture distance*. Rendering the complete candidate (ramp and residual
 //!    noise included) is what makes the noise model and the structured ones comparable, and
-//!    it orders the nearest families ([`TEXTURE_WEIGHT`]); see [`Suggester::suggestions`].
+//!    it orders the fitted families ([`TEXTURE_WEIGHT`]); see [`Suggester::suggestions`].
 
 mod rank;
 
@@ -23,6 +24,7 @@ pub use rank::{
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
 use crate::db::{Db, Match, query};
 use crate::error::Result;
+use crate::family_classifier::family_order;
 use crate::gabor::Descriptor;
 use crate::input::Photo;
 use crate::noise::Tile;
@@ -32,43 +34,23 @@ use crate::refine::refine;
 use crate::structure::fit_structured;
 use crate::two_tone::{TwoTone, network_phase, two_tone};
 
-/// The ranks that leaving a family unrefined must not change: the first model and the rest of
-/// the top three that the app lists.
+/// The ranks the app lists with thumbnails and scores: the first model and the rest of the top
+/// three.
 pub const RANKS_KEPT: usize = 3;
 
-/// The least that refinement has left of each family's retrieval distance (refined ÷
-/// retrieval distance, the minimum over the families' refinements on every patch of the
-/// development set, rounded down): a family whose retrieval distance times this is above the
-/// [`RANKS_KEPT`]-th best refined distance is not refined ([`Suggester::pending`]).
-///
-/// Ours, not Bourque & Dudek's (who refine every shader of their catalogue's best matches):
-/// refinement is most of an analysis' time, and most families cannot catch up. Measured on the
-/// development set (208 patches, `tools/refinement_reach_cv.py` on the per-family distances of
-/// `analyzer/examples/refinement_reach.rs`): with each fold's table taken from the other three
-/// folds, the first model and the ordered top three were those of refining every family on
-/// 208 of 208 held-out patches, with 6.25 ± 0.11 of 9 families refined (the rounds below);
-/// taking the 1 % quantile instead of the minimum refined 5.51 and kept 208 and 208 as well
-/// (not used: the minimum is the bound that assumes the least). On the shipped samples (not
-/// used to make the table): the whole photos 20 of 20 and 20 of 20 (brick first on the brick
-/// sample), their quadrants 80 of 80 and 79 of 80 (gravel's third model). A development-set
-/// run made the same 208 choices as with every family refined. Turbulence reaches furthest (its
-/// contrast and roughness are retrieved coarsely); refining only the first few families by
-/// retrieval distance instead kept the first model on 204 of 208 with six of nine refined.
-pub fn refinement_reach(kind: PatternKind) -> f32 {
-    match kind {
-        PatternKind::Perlin => 0.74,
-        PatternKind::Turbulence => 0.39,
-        PatternKind::Ridged => 0.71,
-        PatternKind::Grid => 0.67,
-        PatternKind::Brick => 0.75,
-        PatternKind::Cells => 0.76,
-        PatternKind::Planks => 0.62,
-        PatternKind::WoodLines => 0.70,
-        PatternKind::Rings => 0.53,
-    }
-}
 /// Longer side of the photo copy the candidates are fitted and scored on.
 pub const RANK_SIZE: u32 = 256;
+
+/// The family classifier's classes for a photo as the ranking sees it (reduced to
+/// [`RANK_SIZE`], its two-tone structure map described), nearest first, with their distances
+/// ([`crate::family_classifier::class_distances`]; `None`: the noise class).
+pub fn classify(photo: &Photo) -> Vec<(crate::family_classifier::Class, f64)> {
+    let small = photo.reduced(RANK_SIZE);
+    let small = small.as_ref().unwrap_or(photo);
+    let tt = two_tone(small);
+    let (q, _) = query(&tt.structure, small.width as usize, small.height as usize);
+    crate::family_classifier::class_distances(&q)
+}
 
 /// Which model an analysis uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -104,7 +86,7 @@ pub struct Suggestion {
     /// for a family not fitted yet ([`Suggester::ranked`], [`Suggester::fit`]).
     pub distance: Option<f32>,
     /// The ranking key, lower first ([`Suggester::suggestions`]): for the families, their
-    /// structure distance (blended with `distance` for the first [`RENDER_ORDERED`]) plus
+    /// structure distance (blended with `distance` for the fitted ones that order the list) plus
     /// [`NOISE_MODEL_MARGIN`] × the photo's own patch-to-patch distance; for the noise model,
     /// its `distance` moved onto the best family's scale.
     pub score: f32,
@@ -112,10 +94,13 @@ pub struct Suggestion {
     pub retrieval_distance: f32,
     /// The same after refinement (`None`: not refined).
     pub refined_distance: Option<f32>,
-    /// Not refined because refining it could not have changed the top [`RANKS_KEPT`]
-    /// ([`Suggester::pending`]); `false` for a family not refined because the refinement was
-    /// stopped.
+    /// Not refined because it is not one of the families whose fits order the list
+    /// ([`Suggester::pending`]: the classifier's first three); `false` for a family not refined
+    /// because the refinement was stopped.
     pub skipped: bool,
+    /// One of the candidates whose fitted renders order the list: the noise model and the
+    /// families of [`Suggester::render_ordered`] (the others follow them, unordered by renders).
+    pub render_ordered: bool,
     /// The candidate fitted on the reduced photo (for thumbnails); `None` for a family not
     /// fitted yet.
     pub preview: Option<Params>,
@@ -124,22 +109,22 @@ pub struct Suggestion {
 /// How much refinement [`suggest_with`] does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Refinement {
-    /// Families refined: the first this many by retrieval distance (0: none).
+    /// Families refined at most, in [`Suggester::pending`]'s order (0: none).
     pub families: usize,
     /// Nelder–Mead evaluations per refined family, shared by its starts.
     pub evaluations: usize,
     /// Starts per family: its best this many database entries, each refined with an equal
     /// share of the evaluations; the best result is kept.
     pub starts: usize,
-    /// Families that the analysis' ranking fits and renders, nearest by structure first: at
-    /// least [`RENDER_ORDERED`], which order the list; the others' fits only fill in their
+    /// Families that the analysis' ranking fits and renders, in the list's order: at least
+    /// those that order it ([`Suggester::render_ordered`]); the others' fits only fill in their
     /// rows' texture distances and previews (`usize::MAX`: every family, as `proctex fidelity`
     /// records them). [`suggest_with`] fits every family whatever this says.
     pub fitted: usize,
 }
 
 impl Default for Refinement {
-    /// Every family, two starts of 20 evaluations each. Measured on the synthetic round trip
+    /// Every family that [`Suggester::pending`] refines, two starts of 20 evaluations each. Measured on the synthetic round trip
     /// (72 cases): with one start of 60 evaluations, the query's own parameters were nearer
     /// than the refined result in 2 of 8 perlin cases; two starts gained 2 cases of 72.
     /// Two starts of 20 instead of 40 (half the analysis' main cost): the round trip stays at
@@ -199,7 +184,7 @@ pub fn rank_with(
     fitted: usize,
     progress: &(dyn Fn(usize, usize) -> bool + Sync),
 ) -> Vec<Suggestion> {
-    rank_keeping_noise(db, photo, opts, refinement, fitted, progress).0
+    rank_keeping_noise(db, photo, opts, refinement, fitted, None, progress).0
 }
 
 /// [`rank_with`], and the noise model's analysis of `photo` when the ranking fitted it on
@@ -207,12 +192,16 @@ pub fn rank_with(
 /// model needs, bit for bit, at no further cost. A 256² crop whose best model is the noise
 /// model was analysed twice: the gravel sample's top-left crop analysed warm, old and new
 /// alternated, median of six each, 1.02 → 0.74 s and 1.01 → 0.74 s (two threads).
+///
+/// `also`: a family refined as well when the refinement leaves it out (the one asked for by
+/// name: `--model brick`), so that it is refined whatever the classifier says.
 fn rank_keeping_noise(
     db: &Db,
     photo: &Photo,
     opts: &Options,
     refinement: Refinement,
     fitted: usize,
+    also: Option<PatternKind>,
     progress: &(dyn Fn(usize, usize) -> bool + Sync),
 ) -> (Vec<Suggestion>, Option<Analysis>) {
     let mut s = Suggester::new(db, photo, opts, refinement);
@@ -250,6 +239,13 @@ fn rank_keeping_noise(
             s.set_refined(i, r);
         }
     }
+    let asked = also.and_then(|k| (0..s.starts.len()).find(|&i| s.family(i) == k));
+    if let Some(i) = asked.filter(|&i| !s.is_refined[i] && refinement.families > 0)
+        && !stop.load(std::sync::atomic::Ordering::Relaxed)
+    {
+        let r = one(&s, i);
+        s.set_refined(i, r);
+    }
     let noise = s.fit_noise_unreduced(db);
     (s.ranked(db, fitted), noise)
 }
@@ -273,6 +269,11 @@ pub struct Suggester {
     refinement: Refinement,
     /// Each family's starts (its best entries, best first), families best first.
     starts: Vec<Vec<Match>>,
+    /// The families (in `starts` order) in the list's order before the fitted ones are
+    /// reordered: the classifier's families nearest first ([`crate::family_classifier`]), then
+    /// those it has no example of (turbulence, rings) by retrieval distance. The first
+    /// [`RENDER_ORDERED`] are refined and fitted to order the list.
+    order: Vec<usize>,
     /// Each family's refined result, in `starts` order.
     refined: Vec<Refined>,
     /// Which families are refined (in any order: [`Suggester::set_refined`]).
@@ -315,7 +316,12 @@ impl Suggester {
             .collect();
         let is_refined = vec![false; refined.len()];
         let fitted = vec![None; refined.len()];
+        let index = |k: PatternKind| starts.iter().position(|v| v[0].pattern.kind == k);
+        let mut order: Vec<usize> = family_order(&q).into_iter().filter_map(index).collect();
+        let unknown: Vec<usize> = (0..starts.len()).filter(|i| !order.contains(i)).collect();
+        order.extend(unknown);
         Suggester {
+            order,
             dark_network: crate::cues::dark_skewness(&small) < DARK_NETWORK_SKEWNESS,
             unreduced,
             small,
@@ -333,10 +339,9 @@ impl Suggester {
         }
     }
 
-    /// Families that may be refined (the first this many by retrieval distance; the bound of
-    /// [`Suggester::pending`] leaves some of them out).
+    /// Families that may be refined ([`Suggester::pending`] leaves some of them out).
     pub fn steps(&self) -> usize {
-        self.refinement.families.min(self.starts.len())
+        self.refine_order().len()
     }
 
     /// Family `i` (in retrieval order).
@@ -359,53 +364,40 @@ impl Suggester {
         self.pending().first().copied()
     }
 
-    /// The families of the current round still to refine, in retrieval order (empty: the
-    /// refinement is complete). The first round is the first [`RANKS_KEPT`] families by
-    /// retrieval distance; each next round, every family not yet in a round whose retrieval
-    /// distance times its [`refinement_reach`] is at most the [`RANKS_KEPT`]-th best refined
-    /// distance of the rounds so far (a family that could still enter the top three); none
-    /// such ends it. A pure function of the rounds' refined distances: the same rounds
-    /// whatever the order in which their families were refined (here or by helper workers).
+    /// The families that are refined (in `starts` order): the classifier's first
+    /// [`RENDER_ORDERED`] ([`crate::family_classifier`]), whose fits order the list; at most
+    /// [`Refinement::families`].
+    ///
+    /// Ours, not Bourque & Dudek's (who refine every shader of their catalogue's best matches):
+    /// the other families follow in the classifier's order whatever their structure distance,
+    /// so refining them could change their rows' scores, not the list's order; refinement is
+    /// most of an analysis' time.
+    fn refine_order(&self) -> &[usize] {
+        &self.order[..self.fitted_families().min(self.refinement.families)]
+    }
+
+    /// How many families, first in the classifier's order, are refined and fitted to order the
+    /// list.
+    pub(super) fn fitted_families(&self) -> usize {
+        RENDER_ORDERED.min(self.order.len())
+    }
+
+    /// The families still to refine, in `starts` indices (empty: the refinement is complete):
+    /// those of [`Suggester::refine_order`] not refined yet, in its order. The same
+    /// whatever the order in which they were refined (here or by the browser's helper workers).
     pub fn pending(&self) -> Vec<usize> {
-        let steps = self.steps();
-        let mut in_rounds = vec![false; steps];
-        let mut round: Vec<usize> = (0..steps.min(RANKS_KEPT)).collect();
-        while !round.is_empty() {
-            let left: Vec<usize> = round
-                .iter()
-                .copied()
-                .filter(|&i| !self.is_refined[i])
-                .collect();
-            if !left.is_empty() {
-                return left;
-            }
-            for &i in &round {
-                in_rounds[i] = true;
-            }
-            let mut refined: Vec<f32> = (0..steps)
-                .filter(|&i| in_rounds[i])
-                .filter_map(|i| self.refined[i].1)
-                .collect();
-            refined.sort_by(f32::total_cmp);
-            let bound = refined
-                .get(RANKS_KEPT - 1)
-                .copied()
-                .unwrap_or(f32::INFINITY);
-            round = (0..steps)
-                .filter(|&i| {
-                    !in_rounds[i]
-                        && self.retrieval_distance(i) * refinement_reach(self.family(i)) <= bound
-                })
-                .collect();
-        }
-        round
+        self.refine_order()
+            .iter()
+            .copied()
+            .filter(|&i| !self.is_refined[i])
+            .collect()
     }
 
     /// Stores family `i`'s refinement, computed by [`Suggester::refine_family`] here or on
     /// another `Suggester` built from the same photo, options and database (the browser's
     /// helper workers): the result is the same wherever and in whatever order it ran.
     pub fn set_refined(&mut self, i: usize, r: Refined) {
-        if i < self.steps() {
+        if i < self.starts.len() {
             self.refined[i] = r;
             self.is_refined[i] = true;
             self.fitted[i] = None;
@@ -548,8 +540,19 @@ pub fn analyze_with_model_progress(
     if choice == ModelChoice::Noise {
         return (analyze_prepared(photo, opts), Vec::new());
     }
-    let (suggestions, noise) =
-        rank_keeping_noise(db, photo, opts, refinement, refinement.fitted, progress);
+    let asked = match choice {
+        ModelChoice::Kind(k) => Some(k),
+        _ => None,
+    };
+    let (suggestions, noise) = rank_keeping_noise(
+        db,
+        photo,
+        opts,
+        refinement,
+        refinement.fitted,
+        asked,
+        progress,
+    );
     let pick = suggestions.iter().find(|s| match choice {
         ModelChoice::Auto => true,
         ModelChoice::Kind(k) => s.name == k.name(),

@@ -19,14 +19,17 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the ranking last changed: 316 of 432 (73.1 %) since
-/// the three families nearest by structure are ordered by their fitted renders
-/// (`retrieve::TEXTURE_WEIGHT`), which put a labelled family first on more of the development
-/// set's real photos (35 → 42 of 100) and on fewer of these bare patterns (338 of 432 with the
-/// families ordered by structure distance alone; perlin, turbulence and ridged, fitted, come close
-/// to one another's textures). The test guards against a regression: the rate plus two standard
-/// errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
-const MEASURED_RATE: f32 = 316.0 / 432.0;
+/// The rate measured on all 432 cases when the ranking last changed: 190 of 432 (44.0 %) since
+/// the families that the family classifier puts first are fitted and ordered by their renders
+/// (`retrieve::RENDER_ORDERED`). The classifier was trained on photos of materials, not on clean
+/// procedural patterns: it knows no turbulence or rings (0 of 48 each) and few perlin (5 of 48),
+/// and it put a labelled family first on more of the development set's real photos (42 → 48 of
+/// 100) and of the shipped samples (the brick wall, the planks). Before it, with the three
+/// families nearest by structure: 316 of 432; with the family nearest by retrieval fitted beside
+/// the classifier's three, 313 (and 48 of 100 on the development set, but the shipped planks
+/// back to ridged: docs/devset.md). The test guards against a regression: the rate plus two
+/// standard errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
+const MEASURED_RATE: f32 = 190.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
@@ -106,7 +109,9 @@ fn synthetic_round_trip_finds_the_right_family() {
         100.0 * se,
         100.0 * MEASURED_RATE
     );
-    assert!(median <= 2.8 && p90 <= 4.0, "median {median}, p90 {p90}");
+    // Measured on all 432 cases: median 3.01, 90th percentile 5.15 (2.55 and 3.67 with the
+    // family nearest by retrieval fitted beside the classifier's three).
+    assert!(median <= 3.3 && p90 <= 5.6, "median {median}, p90 {p90}");
 }
 
 /// A photo of thin dark cracks: the noise model matches its histogram and spectrum closely
@@ -127,6 +132,8 @@ fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
     let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
     // The manifest's labels of this photo: ridged or cells.
     assert!(["ridged", "cells"].contains(&names[0]), "{names:?}");
+    // The fitted families (the classifier's first three) come before the noise model, the
+    // others after it.
     assert_eq!(names[RENDER_ORDERED], "noise", "{names:?}");
 
     let gravel = common::dev_quadrant("scorched3d_gravel_256.png");
@@ -154,43 +161,38 @@ fn the_noise_model_chosen_on_a_small_photo_is_its_own_analysis() {
     assert_eq!(ranked[0].preview.as_ref(), Some(&own.params));
 }
 
-/// The refinement's bound: the first three families by retrieval distance are refined; every
-/// family left unrefined is one whose retrieval distance times its family's refinement reach is
-/// above the third-best refined distance (it could not have entered the top three), and is
-/// marked skipped; the top three are refined families.
+/// The refinement refines the classifier's first three families, whose fits order the list, and
+/// no other (each marked skipped); they are the list's fitted families, with the noise model.
 #[test]
-fn the_refinement_skips_only_families_that_cannot_reach_the_top_three() {
-    use proctex::retrieve::{RANKS_KEPT, refinement_reach};
+fn the_refinement_refines_the_classifiers_first_three_families() {
+    use proctex::family_classifier::family_order;
+    use proctex::retrieve::RENDER_ORDERED;
     let db = Db::shipped();
     let opts = Options::default();
-    let photo = common::dev_quadrant("megaglest_stonebricks_256.png");
-    let ranked = rank_with(db, &photo, &opts, Refinement::default(), 1, &|_, _| true);
-    let families: Vec<_> = ranked.iter().filter(|s| s.pattern.is_some()).collect();
-    let mut refined: Vec<f32> = families.iter().filter_map(|s| s.refined_distance).collect();
-    refined.sort_by(f32::total_cmp);
-    let bound = refined[RANKS_KEPT - 1];
-    let mut by_retrieval = families.clone();
-    by_retrieval.sort_by(|a, b| a.retrieval_distance.total_cmp(&b.retrieval_distance));
-    for s in &by_retrieval[..RANKS_KEPT] {
-        assert!(s.refined_distance.is_some(), "{} not refined", s.name);
-    }
-    for s in &families {
-        let kind = s.pattern.as_ref().unwrap().0.kind;
-        assert_eq!(s.skipped, s.refined_distance.is_none(), "{}", s.name);
-        if s.skipped {
-            assert!(
-                s.retrieval_distance * refinement_reach(kind) > bound,
-                "{}",
-                s.name
-            );
-        }
-    }
-    assert!(
-        families[..RANKS_KEPT]
+    for name in ["megaglest_stonebricks_256.png", "scorched3d_gravel_256.png"] {
+        let photo = common::dev_quadrant(name);
+        let map = proctex::two_tone::two_tone(&photo).structure;
+        let (q, _) = proctex::db::query(&map, photo.width as usize, photo.height as usize);
+        let mut chosen: Vec<&str> = family_order(&q)
             .iter()
-            .all(|s| s.refined_distance.is_some())
-    );
-    println!("{} of {} families refined", refined.len(), families.len());
+            .take(RENDER_ORDERED)
+            .map(|k| k.name())
+            .collect();
+        let ranked = rank_with(db, &photo, &opts, Refinement::default(), 1, &|_, _| true);
+        for s in ranked.iter().filter(|s| s.pattern.is_some()) {
+            let fitted = chosen.contains(&s.name);
+            assert_eq!(s.refined_distance.is_some(), fitted, "{name}: {}", s.name);
+            assert_eq!(s.skipped, !fitted, "{name}: {}", s.name);
+            assert_eq!(s.render_ordered, fitted, "{name}: {}", s.name);
+            assert_eq!(s.distance.is_some(), fitted, "{name}: {}", s.name);
+        }
+        // The first rows are the noise model and those families, in some order.
+        let mut head: Vec<&str> = ranked[..=RENDER_ORDERED].iter().map(|s| s.name).collect();
+        head.sort();
+        chosen.push("noise");
+        chosen.sort();
+        assert_eq!(head, chosen, "{name}");
+    }
 }
 
 /// The ranking that fits only the families that decide the order (the browser's worker shows

@@ -259,7 +259,7 @@ test('when the refinement helpers cannot start, the worker refines every family 
   expect(t.cancelled).toBe(false);
   expect(t.helped).toBe(0);
   expect(t.rows.length).toBe(10);
-  // Every family refined but those the bound skipped (they could not reach the top three), and
+  // The families that order the list refined, the others skipped (the classifier orders them), and
   // the same first model as with helpers (the gravel test above).
   expect(t.rows.filter((r) => r.retrieval !== null && r.refined === null && !r.skipped).length).toBe(0);
   expect(s.suggestions[0].name).toBe('noise');

@@ -109,6 +109,10 @@ def main():
         print(f"{package}: {found} of {len(wanted)} labelled files")
     print(f"then: cargo run --release -p proctex-analyzer --example corpus_lab -- dds "
           f"{os.path.join(out, 'dds')} {out}")
+    print(f"and, to train the product's family classifier again on every labels*.tsv: "
+          f"cat tools/corpus/labels*.tsv > /tmp/labels_all.tsv; cargo run --release -p "
+          f"proctex-analyzer --example corpus_lab -- table /tmp/labels_all.tsv {out} "
+          f"analyzer/src/family_classifier_table.rs")
 
 
 if __name__ == "__main__":

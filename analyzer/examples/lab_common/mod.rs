@@ -11,7 +11,7 @@ pub mod topology;
 use proctex::cues::blur;
 use proctex::db::sample;
 use proctex::devset::{Category, parse_manifest};
-use proctex::gabor::{Descriptor, FREQUENCIES, ORIENTATIONS, QUANTILES, SIZE};
+use proctex::gabor::SIZE;
 use proctex::input::{Crop, Photo};
 use proctex::noise::Tile;
 use proctex::pattern::PatternKind;
@@ -149,37 +149,6 @@ pub fn augment(s: &[f32], n: usize, scale: f32, u: &dyn Fn(u32) -> f32) -> Vec<f
             t.powf(gamma)
         })
         .collect()
-}
-
-/// Rotation-invariant features: per (part, frequency) the log mean energy over orientations
-/// and the magnitudes of the orientation profile's harmonics relative to its mean; then the
-/// quantiles.
-#[allow(dead_code)] // the retrieval laboratory describes, it does not classify
-pub fn features(d: &Descriptor, harmonics: usize) -> Vec<f64> {
-    let block = ORIENTATIONS * FREQUENCIES;
-    let mut out = Vec::new();
-    for part in 0..2 {
-        for k in 0..FREQUENCIES {
-            let e: Vec<f64> = (0..ORIENTATIONS)
-                .map(|o| d.0[part * block + o * FREQUENCIES + k] as f64)
-                .collect();
-            let t = e.iter().sum::<f64>() / ORIENTATIONS as f64;
-            out.push((t + 1e-4).ln());
-            for h in 1..=harmonics {
-                let (mut re, mut im) = (0.0, 0.0);
-                for (o, v) in e.iter().enumerate() {
-                    let a = std::f64::consts::TAU * (h * o) as f64 / ORIENTATIONS as f64;
-                    re += v * a.cos();
-                    im += v * a.sin();
-                }
-                out.push((re * re + im * im).sqrt() / ORIENTATIONS as f64 / (t + 1e-4));
-            }
-        }
-    }
-    for i in 0..QUANTILES {
-        out.push(d.0[2 * block + i] as f64);
-    }
-    out
 }
 
 /// `measure` of the 128² maps of `per_kind` database patterns per family, each clean and

@@ -188,10 +188,10 @@ impl ProctexApp {
                 let texture = row
                     .distance
                     .map_or("fitting…".into(), |d| format!("{d:.3}"));
-                // The noise model and the families nearest by structure come first, ordered by
-                // their fitted renders; the other families follow by structure distance
-                // (`Suggester::ranked`), so their scores are on that scale.
-                let compared = i <= proctex::retrieve::RENDER_ORDERED;
+                // The noise model and the families the classifier puts first come first, ordered
+                // by their fitted renders; the other families follow in the classifier's order
+                // (`Suggester::ranked`), their scores their structure distances.
+                let compared = row.render_ordered;
                 let mut tip = format!(
                     "{}: score {:.3} (lower is nearer; {})\ntexture distance {texture}",
                     row.name,
@@ -199,7 +199,7 @@ impl ProctexApp {
                     if compared {
                         "the first models are compared by their fitted renders"
                     } else {
-                        "after the models compared by their renders, by structure distance"
+                        "after the models compared by their renders; score by structure distance"
                     }
                 );
                 if let Some(r) = row.retrieval {

@@ -206,10 +206,14 @@ pub struct SuggestionRow {
     pub retrieval: Option<f32>,
     /// The same after refinement, when refined.
     pub refined: Option<f32>,
-    /// Not refined because refining it could not have changed the top three (see
-    /// `retrieve::Suggester::pending`).
+    /// Not refined because refining it could not have changed the fitted families that order
+    /// the list (see `retrieve::Suggester::pending`).
     #[serde(default)]
     pub skipped: bool,
+    /// One of the candidates whose fitted renders order the list (the others follow by the
+    /// classifier's order; see `retrieve::Suggester::ranked`).
+    #[serde(default)]
+    pub render_ordered: bool,
 }
 
 /// The automatic model choice of one photo (or crop), run a family at a time so that the
@@ -337,7 +341,7 @@ impl SuggestJob {
     }
 
     /// Ranks the candidates with the refinement done so far (the families not refined keep
-    /// their retrieved pattern). Only the noise model and the families nearest by structure are
+    /// their retrieved pattern). Only the noise model and the families that order the list are
     /// fitted: they decide the order (`retrieve::Suggester::ranked`); [`SuggestJob::fit_next`]
     /// fits the other rows afterwards, one per call.
     pub fn rank(&mut self, db: &Db) -> Vec<SuggestionRow> {
@@ -365,6 +369,7 @@ impl SuggestJob {
             retrieval: s.pattern.as_ref().map(|_| s.retrieval_distance),
             refined: s.refined_distance,
             skipped: s.skipped,
+            render_ordered: s.render_ordered,
         }
     }
 

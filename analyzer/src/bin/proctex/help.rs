@@ -53,9 +53,10 @@ OPTIONS:
                             distance; noise: Lagae's noise model; or a structured family:
                             perlin, turbulence, ridged, grid, brick, cells, planks,
                             wood_lines, rings (retrieved, refined, then fitted)
-    --refine N              Nelder–Mead evaluations per family after retrieval, shared by
-                            its two best database entries as starts (default 40; 0:
-                            retrieval alone)
+    --refine N              Nelder–Mead evaluations per refined family after retrieval
+                            (the family classifier's first three, and the one --model
+                            names), shared by its two best database entries as starts
+                            (default 40; 0: retrieval alone)
     --refine-seconds S      a time budget for the refinement as well: it stops after S
                             seconds (each family keeps its best point so far) and says so;
                             the result then depends on the machine's speed (none by default)";

@@ -263,7 +263,7 @@ fn cmd_morph(mut a: Args) -> Result<()> {
     Ok(())
 }
 
-/// `--refine N`: N Nelder–Mead evaluations for every family (0: retrieval alone).
+/// `--refine N`: N Nelder–Mead evaluations for each refined family (0: retrieval alone).
 fn refinement_of(evaluations: usize) -> Refinement {
     if evaluations == 0 {
         Refinement::NONE
@@ -299,10 +299,11 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
     let mut ranking = String::new();
     if !suggestions.is_empty() {
         ranking += &format!(
-            "candidates, nearest first (score: for the {n} patterns nearest by structure, \
-             {s:.1} × structure + {t:.1} × texture distance + margin, and the noise model's \
-             texture distance against the best of them; then the other patterns by structure \
-             distance + margin):\n",
+            "candidates, nearest first (score: for the {n} patterns the family classifier puts \
+             first, {s:.1} × structure + {t:.1} × texture \
+             distance + margin, and the noise model's texture distance against the best of \
+             them; then the other patterns in the classifier's order, score structure distance \
+             + margin):\n",
             n = proctex::retrieve::RENDER_ORDERED,
             s = 1.0 - proctex::retrieve::TEXTURE_WEIGHT,
             t = proctex::retrieve::TEXTURE_WEIGHT,

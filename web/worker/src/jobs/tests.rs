@@ -118,15 +118,17 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
     let (rgba, w, h) = sample();
     let db = Db::shipped();
     let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
-    let steps = proctex::pattern::PatternKind::ALL.len();
+    // The families refined: the classifier's first three.
+    let kinds = proctex::pattern::PatternKind::ALL;
+    let steps = proctex::retrieve::RENDER_ORDERED;
     assert_eq!(job.progress(), (0, steps));
     while job.step(db) {}
     assert!(job.pending().is_empty());
     let rows = job.rank(db);
-    // Every family refined but those the bound skipped.
+    // Every family refined but those skipped.
     assert_eq!(
         job.progress().0 + rows.iter().filter(|r| r.skipped).count(),
-        steps
+        kinds.len()
     );
     let opts = Options {
         seed: 1,
@@ -147,10 +149,11 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
     // The noise model and the families that order the list are fitted at once, the others on
     // request: then each row is the CLI's, and its thumbnail appears.
     let fitted: Vec<bool> = rows.iter().map(|r| r.distance.is_some()).collect();
-    assert_eq!(
-        fitted.iter().filter(|&&f| f).count(),
-        1 + proctex::retrieve::RENDER_ORDERED,
-        "{rows:?}"
+    assert_eq!(fitted.iter().filter(|&&f| f).count(), 1 + steps, "{rows:?}");
+    assert!(
+        rows.iter()
+            .zip(&fitted)
+            .all(|(r, &f)| r.render_ordered == f)
     );
     let opaque = |t: &[u8]| t.chunks_exact(4).all(|px| px[3] == 255);
     for (i, t) in thumbs.chunks_exact(side * side * 4).enumerate() {
