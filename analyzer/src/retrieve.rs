@@ -124,9 +124,10 @@ pub struct Refinement {
 }
 
 impl Default for Refinement {
-    /// Every family that [`Suggester::pending`] refines, two starts of 20 evaluations each. Measured on the synthetic round trip
-    /// (72 cases): with one start of 60 evaluations, the query's own parameters were nearer
-    /// than the refined result in 2 of 8 perlin cases; two starts gained 2 cases of 72.
+    /// Every family that [`Suggester::pending`] refines, two starts of 20 evaluations each.
+    /// Measured on the synthetic round trip (72 cases): with one start of 60 evaluations, the
+    /// query's own parameters were nearer than the refined result in 2 of 8 perlin cases; two
+    /// starts gained 2 cases of 72.
     /// Two starts of 20 instead of 40 (half the analysis' main cost): the round trip stays at
     /// 66 of 72, and the brick sample still ranks brick first (refined 6.70 → 3.42 against
     /// 3.24 with 40; planks second, 5.29). Refining only the three families nearest by
@@ -339,7 +340,7 @@ impl Suggester {
         }
     }
 
-    /// Families that may be refined ([`Suggester::pending`] leaves some of them out).
+    /// Families that are refined ([`Suggester::pending`]).
     pub fn steps(&self) -> usize {
         self.refine_order().len()
     }
@@ -373,13 +374,10 @@ impl Suggester {
     /// so refining them could change their rows' scores, not the list's order; refinement is
     /// most of an analysis' time.
     fn refine_order(&self) -> &[usize] {
-        &self.order[..self.fitted_families().min(self.refinement.families)]
-    }
-
-    /// How many families, first in the classifier's order, are refined and fitted to order the
-    /// list.
-    pub(super) fn fitted_families(&self) -> usize {
-        RENDER_ORDERED.min(self.order.len())
+        let n = RENDER_ORDERED
+            .min(self.order.len())
+            .min(self.refinement.families);
+        &self.order[..n]
     }
 
     /// The families still to refine, in `starts` indices (empty: the refinement is complete):

@@ -72,9 +72,9 @@ pub const DARK_NETWORK_SKEWNESS: f32 = -0.599;
 pub const RENDER_ORDERED: usize = RANKS_KEPT;
 
 /// The weight `w` of the texture distance in the order of the fitted families
-/// ([`RENDER_ORDERED`]): `(1 − w) · structure + w · texture distance`. Ours: Bourque & Dudek rank by the
-/// distance of the refined shader's render alone, the two-tone paper by the structure map's;
-/// which one orders real photos' families better was measured, not assumed.
+/// ([`RENDER_ORDERED`]): `(1 − w) · structure + w · texture distance`. Ours: Bourque & Dudek
+/// rank by the distance of the refined shader's render alone, the two-tone paper by the
+/// structure map's; which one orders real photos' families better was measured, not assumed.
 ///
 /// The structure distance compares the bare pattern with the photo's structure map, the texture
 /// distance the fitted render (ramp, tone curve, residual noise) with the photo. On the synthetic
@@ -131,17 +131,18 @@ impl Suggester {
     /// Ranking (`score`): a family's score is its *structure distance* (refined, else
     /// retrieval: the bare pattern's descriptor against the photo's structure map) plus the
     /// [`NOISE_MODEL_MARGIN`] margin. The families of [`Suggester::render_ordered`] (the
-    /// classifier's first [`RENDER_ORDERED`]) are fitted and rendered, and ordered among themselves by [`TEXTURE_WEIGHT`]'s
-    /// blend of their structure and *texture distance* (the fitted render projected on the
-    /// photo's tone line, described) plus the margin; the other families follow them in the
-    /// classifier's order, then those it does not know by structure distance. The noise model has no bare structure;
+    /// classifier's first [`RENDER_ORDERED`]) are fitted and rendered, and ordered among
+    /// themselves by [`TEXTURE_WEIGHT`]'s blend of their structure and *texture distance* (the
+    /// fitted render projected on the photo's tone line, described) plus the margin; the other
+    /// families follow them in the classifier's order, then those it does not know by retrieval
+    /// distance. The noise model has no bare structure;
     /// it is ranked against the best family by texture distance: noise comes first when its
     /// texture distance is below the best family's plus the margin. Its `score` is its texture
     /// distance moved onto the best family's scale (minus the best family's texture − score
     /// difference, minus the margin) and it takes its place among the fitted families by it, so
     /// one sort orders them; it never follows an unfitted family. On a photo with a dark network
     /// ([`DARK_NETWORK_SKEWNESS`]) the noise model ranks right after the fitted families instead
-    /// (at least [`RENDER_ORDERED`] of them: the top three are families).
+    /// ([`RENDER_ORDERED`] of them: the top three are families).
     pub fn suggestions(&self, db: &Db) -> Vec<Suggestion> {
         self.ranked(db, usize::MAX)
     }
@@ -171,7 +172,8 @@ impl Suggester {
             preview: Some(noise),
         };
         let complete = self.pending().is_empty();
-        let (order, ordered) = self.family_order();
+        let order = &self.order;
+        let ordered = self.render_ordered().len();
         let mut families: Vec<Suggestion> = order
             .iter()
             .enumerate()
@@ -246,21 +248,11 @@ impl Suggester {
         NOISE_MODEL_MARGIN * self_distance(db, &self.tt)
     }
 
-    /// The families (in `starts` order) in the list's order before the fitted ones are
-    /// reordered, and how many of them, first, are fitted to order it: the classifier's first
-    /// [`RENDER_ORDERED`] ([`crate::family_classifier`]); then its other families in its order,
-    /// then those it has no example of (turbulence, rings) by retrieval distance.
-    fn family_order(&self) -> (Vec<usize>, usize) {
-        (self.order.clone(), self.fitted_families())
-    }
-
     /// The families (in `starts` order) whose fits order the list (the classifier's first
     /// [`RENDER_ORDERED`]): what [`Suggester::ranked`] fits first, unless
     /// [`Suggester::set_fitted`] stored them.
     pub fn render_ordered(&self) -> Vec<usize> {
-        let (mut order, fitted) = self.family_order();
-        order.truncate(fitted);
-        order
+        self.order[..RENDER_ORDERED.min(self.order.len())].to_vec()
     }
 
     /// Family `i`'s (in `starts` order) refined pattern fitted on the reduced photo, and its
