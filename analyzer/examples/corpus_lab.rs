@@ -16,7 +16,9 @@
 //!   replacement (the spread of the development set's count over the corpus's sampling).
 //! - `corpus_lab table LABELS DIR OUT`: the same discriminant (setting chosen on the corpus),
 //!   trained on every labelled texture and written as the product's table
-//!   (`analyzer/src/family_classifier_table.rs`, read by `proctex::family_classifier`).
+//!   (`analyzer/src/family_classifier_table.rs`, read by `proctex::family_classifier`), with the
+//!   distance beyond which a query is unlike every texture it knows (`UNFAMILIAR_DISTANCE`: a
+//!   quantile of the corpus's held-out distances).
 //! - `corpus_lab set LABELS DIR OUT`: the labelled textures as a set for `proctex fidelity --set
 //!   OUT` (reduced to at most 512 pixels a side, with a manifest).
 
@@ -129,8 +131,9 @@ impl Classifier {
         }
     }
 
-    /// The classes nearest first (either tone orientation of the query).
-    fn order(&self, d: &Descriptor) -> Vec<usize> {
+    /// Each present class's squared distance to the query's projection (the nearer tone
+    /// orientation), as the product's `class_distances` measures it.
+    fn distances(&self, d: &Descriptor) -> Vec<f64> {
         let score = |d: &Descriptor| {
             scores(
                 &self.model,
@@ -140,7 +143,12 @@ impl Classifier {
             )
         };
         let (a, b) = (score(d), score(&d.swapped()));
-        let s: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x.min(*y)).collect();
+        a.iter().zip(&b).map(|(x, y)| x.min(*y)).collect()
+    }
+
+    /// The classes nearest first (either tone orientation of the query).
+    fn order(&self, d: &Descriptor) -> Vec<usize> {
+        let s = self.distances(d);
         let mut order: Vec<usize> = (0..s.len()).collect();
         order.sort_by(|&x, &y| s[x].total_cmp(&s[y]));
         order.iter().map(|&i| self.present[i]).collect()
@@ -191,6 +199,46 @@ fn choose_setting(corpus: &[Texture], names: &[&str]) -> (usize, f64) {
     best.1
 }
 
+/// The quantile of the held-out nearest-class distances that [`table`] writes as
+/// `UNFAMILIAR_DISTANCE`: a photo farther than that from every class is farther than all but 5 %
+/// of the real textures the classifier had not seen. The conventional 5 % of a one-sided test,
+/// fixed before the gate was measured on any photo (nothing chose it by its results).
+const UNFAMILIAR_QUANTILE: f64 = 0.95;
+
+/// Every corpus quadrant's distance to its nearest class by the discriminant trained without
+/// its fold (the setting's [`CORPUS_FOLDS`]-fold cross-validation), sorted: how far real
+/// textures the classifier has not seen fall from its classes.
+fn held_out_distances(corpus: &[Texture], names: &[&str], setting: (usize, f64)) -> Vec<f64> {
+    let mut out = Vec::new();
+    for f in 0..CORPUS_FOLDS {
+        let fold = |t: &Texture| proctex::devset::fold_of(&t.file, CORPUS_FOLDS) == f;
+        let train: Vec<&Texture> = corpus.iter().filter(|t| !fold(t)).collect();
+        let c = Classifier::train(&train, names.len(), setting.0, setting.1);
+        for t in corpus.iter().filter(|t| fold(t)) {
+            for d in &t.quadrants {
+                let nearest = c.distances(d).into_iter().fold(f64::INFINITY, f64::min);
+                out.push(nearest);
+            }
+        }
+    }
+    out.sort_by(f64::total_cmp);
+    out
+}
+
+/// The [`UNFAMILIAR_QUANTILE`] quantile of [`held_out_distances`], and how many quadrants it
+/// is taken over (printed with the median).
+fn unfamiliar_distance(corpus: &[Texture], names: &[&str], setting: (usize, f64)) -> (f64, usize) {
+    let held_out = held_out_distances(corpus, names, setting);
+    let at = ((held_out.len() - 1) as f64 * UNFAMILIAR_QUANTILE).round() as usize;
+    let unfamiliar = held_out[at];
+    println!(
+        "held-out nearest-class distances of {} quadrants: median {:.2}, {UNFAMILIAR_QUANTILE} quantile {unfamiliar:.2}",
+        held_out.len(),
+        held_out[held_out.len() / 2]
+    );
+    (unfamiliar, held_out.len())
+}
+
 /// Trains the discriminant on every labelled texture of LABELS (in DIR) with the setting
 /// [`choose_setting`] chooses and writes it as the product's table (`OUT`:
 /// `analyzer/src/family_classifier_table.rs`): the classes with examples, the projection and
@@ -199,6 +247,7 @@ fn table(labels: &str, dir: &str, out: &str) {
     let names = class_names();
     let corpus = load_corpus(labels, dir, &names);
     let (harmonics, ridge) = choose_setting(&corpus, &names);
+    let (unfamiliar, quadrants) = unfamiliar_distance(&corpus, &names, (harmonics, ridge));
     let all: Vec<&Texture> = corpus.iter().collect();
     let c = Classifier::train(&all, names.len(), harmonics, ridge);
     let count = |k: usize| corpus.iter().filter(|t| t.class == k).count();
@@ -239,6 +288,12 @@ fn table(labels: &str, dir: &str, out: &str) {
     text +=
         "/// The orientation harmonics of the features ([`crate::family_classifier::features`]).\n";
     text += &format!("pub const HARMONICS: usize = {harmonics};\n\n");
+    text += &format!(
+        "/// The {UNFAMILIAR_QUANTILE} quantile of the corpus quadrants' squared distances to their \
+         nearest\n/// class, each by the discriminant trained without its fold ({CORPUS_FOLDS}-fold \
+         cross-validation,\n/// {quadrants} quadrants): a query farther than this from every class is \
+         unlike the textures it knows.\npub const UNFAMILIAR_DISTANCE: f64 = {unfamiliar:e};\n\n"
+    );
     text += "/// The classes: pattern families' names and `noise`.\n#[rustfmt::skip]\n";
     let quoted: Vec<String> = c
         .present

@@ -143,6 +143,10 @@ pub struct PatchChoice {
     /// The family classifier's classes for the source patch, nearest first (families' names
     /// and `noise`; [`crate::retrieve::classify`]).
     pub classifier: Vec<String>,
+    /// The squared distance of the patch's nearest class
+    /// ([`crate::family_classifier::class_distances`]; above `UNFAMILIAR_DISTANCE`, the ranking
+    /// also fits the family nearest by retrieval).
+    pub classifier_distance: f64,
 }
 
 /// [`crate::noise_tone::numbers`] of the noise model in a ranking (0 if it has none).
@@ -225,6 +229,7 @@ impl PhotoResult {
                 use crate::evaluate::render_params_at_photo_size;
                 use crate::specks::speck_fraction;
                 let names: Vec<String> = run.ranking.iter().map(|s| s.name.to_string()).collect();
+                let classes = crate::retrieve::classify(run.source);
                 choices[run.patch] = Some(PatchChoice {
                     patch: PATCHES[run.patch],
                     chosen: names.first().cloned().unwrap_or_else(|| "noise".into()),
@@ -252,10 +257,11 @@ impl PhotoResult {
                     photo_specks: speck_fraction(run.source),
                     photo_cues: crate::cues::cues(run.source),
                     noise_numbers: noise_numbers(run.ranking),
-                    classifier: crate::retrieve::classify(run.source)
-                        .into_iter()
+                    classifier: classes
+                        .iter()
                         .map(|(c, _)| c.map_or("noise", |k| k.name()).to_string())
                         .collect(),
+                    classifier_distance: classes.first().map_or(f64::NAN, |c| c.1),
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -665,6 +671,7 @@ mod tests {
                     photo_cues: [0.0; crate::cues::CUES],
                     noise_numbers: if file == "a.png" { 60 } else { 100 },
                     classifier: Vec::new(),
+                    classifier_distance: 1.0,
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

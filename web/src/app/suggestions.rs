@@ -207,7 +207,7 @@ impl ProctexApp {
                     if let Some(f) = row.refined {
                         tip += &format!(" → refined {f:.3}");
                     } else if row.skipped {
-                        tip += " (not refined: it could not reach the top three)";
+                        tip += " (not refined: not among the models compared by their renders)";
                     }
                 }
                 tip += if adopted == Some(i) {
