@@ -30,6 +30,7 @@ use proctex::family_classifier::features;
 use proctex::gabor::Descriptor;
 use proctex::input::Photo;
 use proctex::pattern::PatternKind;
+use proctex::retrieve::RANK_SIZE;
 use proctex::two_tone::two_tone;
 
 const THUMB: usize = 96;
@@ -61,8 +62,12 @@ fn sheet(list: &str, dir: &str, out: &str, start: usize, count: usize) {
     img.save(out).unwrap();
 }
 
-/// The descriptor of a patch as the product queries it (its two-tone structure map).
+/// The descriptor of a patch as the product's ranking queries it: reduced to at most
+/// [`RANK_SIZE`] a side (larger textures' quadrants were described at their own size before
+/// the third batch; the product never sees those scales), its two-tone structure map described.
 fn describe(photo: &Photo) -> Descriptor {
+    let reduced = photo.reduced(RANK_SIZE);
+    let photo = reduced.as_ref().unwrap_or(photo);
     let map = two_tone(photo).structure;
     query(&map, photo.width as usize, photo.height as usize).0
 }

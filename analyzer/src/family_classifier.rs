@@ -7,10 +7,11 @@
 //! a database of rendered patterns. Rendered patterns are clean; photos carry grain, per-stone
 //! colour, lighting and blur, and on real photos the nearest rendered family was labelled on
 //! 47 of the development set's 100 structured patches (a discriminant trained on the rendered
-//! patterns, clean or made photo-like: 41–48). Trained instead on 539 labelled textures of
+//! patterns, clean or made photo-like: 41–48). Trained instead on 590 labelled textures of
 //! other games' Debian packages (`tools/corpus/`; none a source of the development set or the
-//! shipped samples), its nearest family was labelled on 56 of them (70 with the first 335
-//! textures alone; 60 ± 7 over corpora resampled with replacement). Its setting (orientation
+//! shipped samples), its nearest family was labelled on 65 of them (56 with the first two
+//! batches, 539 textures; 70 with the first 335 alone; 60 ± 7 over corpora of the first two
+//! batches resampled with replacement). Its setting (orientation
 //! harmonics, ridge) was chosen by 4-fold cross-validation over the corpus alone; the
 //! development set was never trained on (`analyzer/examples/corpus_lab.rs`, `table`, writes
 //! the table; docs/devset.md, "A family classifier trained on real textures").

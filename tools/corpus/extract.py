@@ -7,9 +7,10 @@ decoded to PNG by `corpus_lab dds` (run after this script; the command is printe
 
 Names: 0ad-data `art/textures/terrain/types/a/b.png.cached.dds` -> `a__b.png`;
 nexuiz-textures `textures/a/b.jpg` -> `a__b.jpg`; redeclipse-data and supertuxkart-data
-`.../dir/file` -> `re__dir__file` and `stk__dir__file`.
+`.../dir/file` -> `re__dir__file` and `stk__dir__file`; cube2-data and extremetuxracer-data
+likewise, `cube2__dir__file` and `etr__dir__file`.
 
-Usage: tools/corpus/extract.py OUT [--cache DIR]   (the packages are about 3.3 GB together)
+Usage: tools/corpus/extract.py OUT [--cache DIR]   (the packages are about 3.5 GB together)
 """
 import os
 import subprocess
@@ -18,6 +19,14 @@ import tempfile
 import zipfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+
+# Packages whose files are named `tag__dir__file` (`from_tree`).
+TREE_TAGS = {
+    "redeclipse-data": "re",
+    "supertuxkart-data": "stk",
+    "cube2-data": "cube2",
+    "extremetuxracer-data": "etr",
+}
 
 
 def labelled():
@@ -104,7 +113,7 @@ def main():
                 z = extract_member(deb, "/usr/share/games/nexuiz/data/textures.pk3", tmp)
                 found = from_zip(z, "textures/", lambda flat: flat, wanted, out)
             else:
-                tag = "re" if package == "redeclipse-data" else "stk"
+                tag = TREE_TAGS[package]
                 found = from_tree(deb, tag, wanted, out)
         print(f"{package}: {found} of {len(wanted)} labelled files")
     print(f"then: cargo run --release -p proctex-analyzer --example corpus_lab -- dds "
