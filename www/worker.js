@@ -74,8 +74,7 @@ dbReady.catch(() => {}); // reported per photo, below
 // Refinement runs one model family per queued step, so a new photo, a crop, the plots'
 // statistics or Cancel get in between steps; helper workers (refiner.js) refine other families
 // at the same time. The families come in rounds (`pending()`: one round, the classifier's first
-// three and, on a photo unlike the textures it was trained on, the family nearest by
-// retrieval); `todo`: families of the round nobody has
+// three); `todo`: families of the round nobody has
 // started (this worker takes from the front, the helpers from the back); `inflight`: families
 // at the helpers; `waiting`: this worker has nothing left to refine and waits for them.
 // Tasks are `{ kind: 'refine', family }`; once the refinement is over (`finished`),

@@ -144,8 +144,8 @@ pub struct PatchChoice {
     /// and `noise`; [`crate::retrieve::classify`]).
     pub classifier: Vec<String>,
     /// The squared distance of the patch's nearest class
-    /// ([`crate::family_classifier::class_distances`]; above `UNFAMILIAR_DISTANCE`, the ranking
-    /// also fits the family nearest by retrieval).
+    /// ([`crate::family_classifier::class_distances`]): how far the patch lies from every texture
+    /// the classifier was trained on (`corpus_lab table` prints the corpus's own held-out spread).
     pub classifier_distance: f64,
 }
 

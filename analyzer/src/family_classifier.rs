@@ -22,7 +22,7 @@
 //! distance with the classifier's three where it was nearer than them was measured and not kept:
 //! structured labelled 46 against 48 (every fold of the cross-validation chose without it).
 
-use crate::family_classifier_table::{CLASSES, HARMONICS, MEANS, PROJECTION, UNFAMILIAR_DISTANCE};
+use crate::family_classifier_table::{CLASSES, HARMONICS, MEANS, PROJECTION};
 use crate::gabor::{Descriptor, FREQUENCIES, ORIENTATIONS, QUANTILES};
 use crate::pattern::PatternKind;
 
@@ -101,18 +101,6 @@ pub fn family_order(d: &Descriptor) -> Vec<PatternKind> {
 /// The families of [`class_distances`]' answer, in its order.
 pub fn families(distances: &[(Class, f64)]) -> Vec<PatternKind> {
     distances.iter().filter_map(|(c, _)| *c).collect()
-}
-
-/// Whether a query whose [`class_distances`] are `distances` is unlike every texture the
-/// classifier was trained on: farther from its nearest class than all but 5 % of the corpus's
-/// textures were from the classifier trained without them (`UNFAMILIAR_DISTANCE`, written with
-/// the table). Its order then says little: measured before the gate was used, bare synthetic
-/// patterns lie at a median of 14.6 (211 of 432 above the threshold), the development set's
-/// patches at 2.4 (9 of 208 above), the shipped samples' at 3.5 (3 of 80).
-pub fn unfamiliar(distances: &[(Class, f64)]) -> bool {
-    distances
-        .first()
-        .is_some_and(|&(_, nearest)| nearest > UNFAMILIAR_DISTANCE)
 }
 
 #[cfg(test)]

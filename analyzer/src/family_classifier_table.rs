@@ -9,11 +9,6 @@
 /// The orientation harmonics of the features ([`crate::family_classifier::features`]).
 pub const HARMONICS: usize = 4;
 
-/// The 0.95 quantile of the corpus quadrants' squared distances to their nearest
-/// class, each by the discriminant trained without its fold (4-fold cross-validation,
-/// 2360 quadrants): a query farther than this from every class is unlike the textures it knows.
-pub const UNFAMILIAR_DISTANCE: f64 = 1.555578533338588e1;
-
 /// The classes: pattern families' names and `noise`.
 #[rustfmt::skip]
 pub const CLASSES: [&str; 8] = ["perlin", "ridged", "grid", "brick", "cells", "planks", "wood_lines", "noise"];

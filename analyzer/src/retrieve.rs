@@ -24,7 +24,7 @@ pub use rank::{
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
 use crate::db::{Db, Match, query};
 use crate::error::Result;
-use crate::family_classifier::{class_distances, families, unfamiliar};
+use crate::family_classifier::family_order;
 use crate::gabor::Descriptor;
 use crate::input::Photo;
 use crate::noise::Tile;
@@ -49,7 +49,7 @@ pub fn classify(photo: &Photo) -> Vec<(crate::family_classifier::Class, f64)> {
     let small = small.as_ref().unwrap_or(photo);
     let tt = two_tone(small);
     let (q, _) = query(&tt.structure, small.width as usize, small.height as usize);
-    class_distances(&q)
+    crate::family_classifier::class_distances(&q)
 }
 
 /// Which model an analysis uses.
@@ -275,11 +275,6 @@ pub struct Suggester {
     /// those it has no example of (turbulence, rings) by retrieval distance. The first
     /// [`RENDER_ORDERED`] are refined and fitted to order the list.
     order: Vec<usize>,
-    /// How many of `order`'s first families are refined and fitted to order the list:
-    /// [`RENDER_ORDERED`], and one more on a photo unlike every texture the classifier was
-    /// trained on ([`crate::family_classifier::unfamiliar`]), whose family nearest by retrieval
-    /// joins them.
-    ordered: usize,
     /// Each family's refined result, in `starts` order.
     refined: Vec<Refined>,
     /// Which families are refined (in any order: [`Suggester::set_refined`]).
@@ -323,25 +318,11 @@ impl Suggester {
         let is_refined = vec![false; refined.len()];
         let fitted = vec![None; refined.len()];
         let index = |k: PatternKind| starts.iter().position(|v| v[0].pattern.kind == k);
-        let classes = class_distances(&q);
-        let mut order: Vec<usize> = families(&classes).into_iter().filter_map(index).collect();
+        let mut order: Vec<usize> = family_order(&q).into_iter().filter_map(index).collect();
         let unknown: Vec<usize> = (0..starts.len()).filter(|i| !order.contains(i)).collect();
         order.extend(unknown);
-        let mut ordered = RENDER_ORDERED.min(order.len());
-        // A photo unlike every training texture: the family nearest by retrieval (`starts[0]`)
-        // orders the list as well, right after the classifier's three.
-        if unfamiliar(&classes) && order.len() > ordered && !order[..ordered].contains(&0) {
-            let at = order
-                .iter()
-                .position(|&i| i == 0)
-                .expect("every family is in the order");
-            order.remove(at);
-            order.insert(ordered, 0);
-            ordered += 1;
-        }
         Suggester {
             order,
-            ordered,
             dark_network: crate::cues::dark_skewness(&small) < DARK_NETWORK_SKEWNESS,
             unreduced,
             small,
@@ -393,7 +374,9 @@ impl Suggester {
     /// so refining them could change their rows' scores, not the list's order; refinement is
     /// most of an analysis' time.
     fn refine_order(&self) -> &[usize] {
-        let n = self.ordered.min(self.refinement.families);
+        let n = RENDER_ORDERED
+            .min(self.order.len())
+            .min(self.refinement.families);
         &self.order[..n]
     }
 

@@ -65,8 +65,9 @@ test('a brick photo ranks a brick-like model first and adopts it; a click adopts
   const t = await page.evaluate(() => window.proctex.lastSuggestions());
   expect(t.fitTasks).toBeGreaterThan(1);
   if (t.helpers > 0) expect(t.fitHelped).toBeGreaterThan(0);
-  // So did the fits of the three families nearest by structure, whose renders order the list
-  // (this worker fitted the noise model meanwhile).
+  // So did the fits of the classifier's first three families, whose renders order the list
+  // (this worker fitted the noise model meanwhile; the sample is like the classifier's training
+  // textures, so no fourth family joins them).
   expect(t.orderTasks).toBe(3);
   if (t.helpers > 0) expect(t.orderHelped).toBeGreaterThan(0);
   const cli = JSON.parse(execFileSync(CLI, ['analyze', path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png'),

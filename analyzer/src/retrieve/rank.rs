@@ -66,14 +66,9 @@ pub const DARK_NETWORK_SKEWNESS: f32 = -0.599;
 /// labelled 42 → 48 of 100, top three 75 → 81, stochastic served 105 → 104 of 108. Measured in
 /// full (docs/devset.md): labelled 48, top three 80, served 107; with the family nearest by
 /// retrieval added 48, 77 and 106, and on the shipped samples wooden planks went back to ridged.
-/// What it cost: the synthetic round trip's bare patterns, which the classifier was not trained
-/// on (`tests/retrieval.rs`: 316 → 190 of 432; turbulence and rings, which it has no example of,
-/// were never first). A query unlike every texture it was trained on
-/// ([`crate::family_classifier::unfamiliar`], a threshold fixed from the corpus alone) has the
-/// family nearest by retrieval fitted and ordered as well: the round trip 190 → 259 (266 with the
-/// third corpus batch); on the development set, 9 of 208 patches so gated and no count changed;
-/// on the shipped samples 3 of 80 gated, one brick patch of the 512² sample to planks (brick
-/// second).
+/// What it costs: the synthetic round trip's bare patterns, which the classifier was not trained
+/// on (`tests/retrieval.rs`: 316 → 190 of 432, 198 with the corpus's third batch; turbulence and
+/// rings, which it has no example of, are never first).
 pub const RENDER_ORDERED: usize = RANKS_KEPT;
 
 /// The weight `w` of the texture distance in the order of the fitted families
@@ -257,7 +252,7 @@ impl Suggester {
     /// [`RENDER_ORDERED`]): what [`Suggester::ranked`] fits first, unless
     /// [`Suggester::set_fitted`] stored them.
     pub fn render_ordered(&self) -> Vec<usize> {
-        self.order[..self.ordered].to_vec()
+        self.order[..RENDER_ORDERED.min(self.order.len())].to_vec()
     }
 
     /// Family `i`'s (in `starts` order) refined pattern fitted on the reduced photo, and its

@@ -300,8 +300,7 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
     if !suggestions.is_empty() {
         ranking += &format!(
             "candidates, nearest first (score: for the {n} patterns the family classifier puts \
-             first, and the pattern nearest by retrieval on a photo unlike the textures it was \
-             trained on, {s:.1} × structure + {t:.1} × texture \
+             first, {s:.1} × structure + {t:.1} × texture \
              distance + margin, and the noise model's texture distance against the best of \
              them; then the other patterns in the classifier's order, score structure distance \
              + margin):\n",
