@@ -95,12 +95,10 @@ pub fn class_distances(d: &Descriptor) -> Vec<(Class, f64)> {
 
 /// The families the classifier knows, nearest first.
 pub fn family_order(d: &Descriptor) -> Vec<PatternKind> {
-    families(&class_distances(d))
-}
-
-/// The families of [`class_distances`]' answer, in its order.
-pub fn families(distances: &[(Class, f64)]) -> Vec<PatternKind> {
-    distances.iter().filter_map(|(c, _)| *c).collect()
+    class_distances(d)
+        .into_iter()
+        .filter_map(|(c, _)| c)
+        .collect()
 }
 
 #[cfg(test)]
