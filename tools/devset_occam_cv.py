@@ -56,28 +56,39 @@ def tally_orders(pts, order_of):
     return lab, top3, ns, served, nt
 
 
+def ranking_rows(photos):
+    """Every patch of a run's photos: (photo, patch index, its choice, the noise model's
+    ranking row, the families' rows)."""
+    for p in photos:
+        for i, c in enumerate(p["choices"]):
+            rank = c["ranking"]
+            noise = next(r for r in rank if r["name"] == "noise")
+            yield p, i, c, noise, [r for r in rank if r["name"] != "noise"]
+
+
+def ranking_margin(fams):
+    """The margin a ranking's families were scored with: the family farthest by structure scores
+    its structure distance plus the margin, whichever order ranked the list (the nearest ones may
+    be reordered by a blend)."""
+    structure = [r["refined"] if r["refined"] is not None else r["retrieval"] for r in fams]
+    far = max(range(len(fams)), key=lambda j: structure[j])
+    return fams[far]["score"] - structure[far]
+
+
 def patches(photos, current):
     """(photo file, category, labels, the families' ranking rows, per-occam chooser,
     served-if-family) per patch."""
     out = []
-    for p in photos:
+    for p, i, c, noise, fams in ranking_rows(photos):
         e = p["entry"]
-        for i, c in enumerate(p["choices"]):
-            rank = c["ranking"]
-            noise = next(r for r in rank if r["name"] == "noise")
-            fams = [r for r in rank if r["name"] != "noise"]
-            best = min(fams, key=lambda r: r["score"])
-            # The family farthest by structure scores its structure distance plus the margin,
-            # whichever order ranked the list (the nearest ones may be reordered by a blend).
-            structure = [r["refined"] if r["refined"] is not None else r["retrieval"] for r in fams]
-            far = max(range(len(fams)), key=lambda j: structure[j])
-            margin = fams[far]["score"] - structure[far]
-            family_ok = (c["chosen"] == best["name"]
-                         and patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
-            out.append(dict(file=e["file"], category=e["category"], labels=e["families"] or [],
-                            families=fams,
-                            noise_d=noise["distance"], best=best["name"], best_d=best["distance"],
-                            self_d=margin / current, chosen=c["chosen"], family_ok=family_ok))
+        best = min(fams, key=lambda r: r["score"])
+        margin = ranking_margin(fams)
+        family_ok = (c["chosen"] == best["name"]
+                     and patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
+        out.append(dict(file=e["file"], category=e["category"], labels=e["families"] or [],
+                        families=fams,
+                        noise_d=noise["distance"], best=best["name"], best_d=best["distance"],
+                        self_d=margin / current, chosen=c["chosen"], family_ok=family_ok))
     return out
 
 

@@ -14,6 +14,10 @@
 //!   class and family for the PNG photos of DIR (the shipped samples, which have no labels);
 //!   `CORPUS_LAB_BOOTSTRAP=N` first scores N corpora drawn from the labelled textures with
 //!   replacement (the spread of the development set's count over the corpus's sampling).
+//!   Measured alternatives (not the product's): `CORPUS_LAB_EXTRA=lum` also describes each
+//!   patch's luminance map; `CORPUS_LAB_DIAG_RIDGE=1` scales the ridge by each feature's own
+//!   within-class variance instead of their mean (the same as standardising the features);
+//!   `CORPUS_LAB_NO_LINES=1` zeroes the two straight-line cues (the cues' costliest).
 //! - `corpus_lab table LABELS DIR OUT`: the same discriminant (setting chosen on the corpus),
 //!   trained on every labelled texture and written as the product's table
 //!   (`analyzer/src/family_classifier_table.rs`, read by `proctex::family_classifier`); it
@@ -24,9 +28,10 @@
 mod lab_common;
 
 use lab_common::lda::{fit, project, scores};
+use proctex::cues::{CUES, cues};
 use proctex::db::query;
-use proctex::family_classifier::features;
-use proctex::gabor::Descriptor;
+use proctex::family_classifier::{descriptor_features, features};
+use proctex::gabor::{Descriptor, LEN};
 use proctex::input::Photo;
 use proctex::pattern::PatternKind;
 use proctex::retrieve::RANK_SIZE;
@@ -63,12 +68,53 @@ fn sheet(list: &str, dir: &str, out: &str, start: usize, count: usize) {
 
 /// The descriptor of a patch as the product's ranking queries it: reduced to at most
 /// [`RANK_SIZE`] a side (larger textures' quadrants were described at their own size before
-/// the third batch; the product never sees those scales), its two-tone structure map described.
+/// the third batch; the product never sees those scales), its two-tone structure map described;
+/// the luminance map's descriptor appended when `CORPUS_LAB_EXTRA` contains `lum` (measured, not
+/// kept: [`proctex::family_classifier::features`]), then the patch's cues ([`cues`]), which the
+/// product's classifier reads with the descriptor.
 fn describe(photo: &Photo) -> Descriptor {
     let reduced = photo.reduced(RANK_SIZE);
     let photo = reduced.as_ref().unwrap_or(photo);
     let map = two_tone(photo).structure;
-    query(&map, photo.width as usize, photo.height as usize).0
+    let (w, h) = (photo.width as usize, photo.height as usize);
+    let mut d = query(&map, w, h).0;
+    if with_luminance() {
+        let lum: Vec<f32> = photo
+            .pixels
+            .iter()
+            .map(|p| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2])
+            .collect();
+        d.0.extend(query(&lum, w, h).0.0);
+    }
+    let mut c = cues(photo);
+    if std::env::var("CORPUS_LAB_NO_LINES").is_ok() {
+        c[10] = 0.0;
+        c[11] = 0.0;
+    }
+    d.0.extend(c);
+    d
+}
+
+fn with_luminance() -> bool {
+    std::env::var("CORPUS_LAB_EXTRA").is_ok_and(|v| v.contains("lum"))
+}
+
+/// The classifier's features of a [`describe`]d patch: the product's
+/// ([`proctex::family_classifier::features`]), with the luminance map's descriptor's after the
+/// two-tone map's where [`with_luminance`].
+fn lab_features(d: &Descriptor, harmonics: usize) -> Vec<f64> {
+    let cues: [f32; CUES] = d.0[d.0.len() - CUES..].try_into().unwrap();
+    let map = Descriptor(d.0[..LEN].to_vec());
+    if !with_luminance() {
+        return features(&map, &cues, harmonics);
+    }
+    let mut out = descriptor_features(&map, harmonics);
+    out.extend(descriptor_features(
+        &Descriptor(d.0[LEN..2 * LEN].to_vec()),
+        harmonics,
+    ));
+    out.extend(cues.iter().map(|&c| c as f64));
+    out
 }
 
 fn class_names() -> Vec<&'static str> {
@@ -123,8 +169,8 @@ impl Classifier {
         for t in textures {
             let k = present.iter().position(|&p| p == t.class).unwrap();
             for d in &t.quadrants {
-                xs.push((features(d, harmonics), k));
-                xs.push((features(&d.swapped(), harmonics), k));
+                xs.push((lab_features(d, harmonics), k));
+                xs.push((lab_features(&d.swapped(), harmonics), k));
             }
         }
         let model = fit(&xs, present.len(), ridge, present.len() - 1);
@@ -141,7 +187,7 @@ impl Classifier {
         let score = |d: &Descriptor| {
             scores(
                 &self.model,
-                &project(&self.model.proj, &features(d, self.harmonics)),
+                &project(&self.model.proj, &lab_features(d, self.harmonics)),
                 self.present.len(),
                 0,
             )
@@ -159,7 +205,9 @@ impl Classifier {
     }
 }
 
-const SETTINGS: [(usize, f64); 6] = [
+const SETTINGS: [(usize, f64); 8] = [
+    (4, 1e-5),
+    (4, 1e-4),
     (2, 1e-3),
     (2, 1e-1),
     (2, 1.0),

@@ -10,7 +10,7 @@ use lab_common::{Tally, ordered};
 
 use lab_common::lda::{fit, project, scores};
 use proctex::db::{Db, query};
-use proctex::family_classifier::features;
+use proctex::family_classifier::descriptor_features as features;
 use proctex::gabor::{Descriptor, describe};
 use proctex::pattern::PatternKind;
 use proctex::two_tone::two_tone;

@@ -12,7 +12,7 @@ use lab_common::{Tally, ordered};
 
 use lab_common::lda::{fit, project, scores};
 use lab_common::topology::topology;
-use proctex::family_classifier::features;
+use proctex::family_classifier::descriptor_features as features;
 use proctex::gabor::{SIZE, describe, descriptor_image};
 use proctex::pattern::PatternKind;
 use proctex::two_tone::two_tone;

@@ -34,6 +34,9 @@ pub const CUE_NAMES: [&str; CUES] = [
     "crossing_lines",
 ];
 
+/// The index of `skewness` in [`CUE_NAMES`].
+pub const SKEWNESS: usize = 7;
+
 /// How many cues [`cues`] returns.
 pub const CUES: usize = 12;
 
@@ -426,6 +429,7 @@ mod tests {
             }
         });
         let noise = photo(SIZE, white);
+        assert_eq!(CUE_NAMES[SKEWNESS], "skewness");
         for p in [&joints, &noise] {
             assert_eq!(dark_skewness(p), cue(&cues(p), "skewness"));
         }

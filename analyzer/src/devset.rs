@@ -143,10 +143,11 @@ pub struct PatchChoice {
     /// The family classifier's classes for the source patch, nearest first (families' names
     /// and `noise`; [`crate::retrieve::classify`]).
     pub classifier: Vec<String>,
-    /// The squared distance of the patch's nearest class
-    /// ([`crate::family_classifier::class_distances`]): how far the patch lies from every texture
-    /// the classifier was trained on (`corpus_lab table` prints the corpus's own held-out spread).
-    pub classifier_distance: f64,
+    /// The squared distances of those classes, in the same order
+    /// ([`crate::family_classifier::class_distances`]): the first says how far the patch lies
+    /// from every texture the classifier was trained on (`corpus_lab table` prints the corpus's
+    /// own held-out spread), the others how much nearer one class is than another.
+    pub classifier_distances: Vec<f64>,
 }
 
 /// [`crate::noise_tone::numbers`] of the noise model in a ranking (0 if it has none).
@@ -261,7 +262,7 @@ impl PhotoResult {
                         .iter()
                         .map(|(c, _)| c.map_or("noise", |k| k.name()).to_string())
                         .collect(),
-                    classifier_distance: classes.first().map_or(f64::NAN, |c| c.1),
+                    classifier_distances: classes.iter().map(|c| c.1).collect(),
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -671,7 +672,7 @@ mod tests {
                     photo_cues: [0.0; crate::cues::CUES],
                     noise_numbers: if file == "a.png" { 60 } else { 100 },
                     classifier: Vec::new(),
-                    classifier_distance: 1.0,
+                    classifier_distances: vec![1.0],
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

@@ -17,14 +17,14 @@
 mod rank;
 
 pub use rank::{
-    DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, RENDER_ORDERED, TEXTURE_WEIGHT, self_distance,
-    texture_distance,
+    CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, RENDER_ORDERED, TEXTURE_WEIGHT,
+    self_distance, texture_distance,
 };
 
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
 use crate::db::{Db, Match, query};
 use crate::error::Result;
-use crate::family_classifier::family_order;
+use crate::family_classifier::class_distances;
 use crate::gabor::Descriptor;
 use crate::input::Photo;
 use crate::noise::Tile;
@@ -42,14 +42,14 @@ pub const RANKS_KEPT: usize = 3;
 pub const RANK_SIZE: u32 = 256;
 
 /// The family classifier's classes for a photo as the ranking sees it (reduced to
-/// [`RANK_SIZE`], its two-tone structure map described), nearest first, with their distances
+/// [`RANK_SIZE`], its two-tone structure map described, its cues), nearest first, with their distances
 /// ([`crate::family_classifier::class_distances`]; `None`: the noise class).
 pub fn classify(photo: &Photo) -> Vec<(crate::family_classifier::Class, f64)> {
     let small = photo.reduced(RANK_SIZE);
     let small = small.as_ref().unwrap_or(photo);
     let tt = two_tone(small);
     let (q, _) = query(&tt.structure, small.width as usize, small.height as usize);
-    crate::family_classifier::class_distances(&q)
+    class_distances(&q, &crate::cues::cues(small))
 }
 
 /// Which model an analysis uses.
@@ -275,6 +275,10 @@ pub struct Suggester {
     /// those it has no example of (turbulence, rings) by retrieval distance. The first
     /// [`RENDER_ORDERED`] are refined and fitted to order the list.
     order: Vec<usize>,
+    /// Each family's squared distance to its class in the family classifier, in `starts`
+    /// order (infinite for a family it has no example of): what [`CLASSIFIER_WEIGHT`] adds to
+    /// the fitted families' order.
+    class_distance: Vec<f64>,
     /// Each family's refined result, in `starts` order.
     refined: Vec<Refined>,
     /// Which families are refined (in any order: [`Suggester::set_refined`]).
@@ -318,12 +322,23 @@ impl Suggester {
         let is_refined = vec![false; refined.len()];
         let fitted = vec![None; refined.len()];
         let index = |k: PatternKind| starts.iter().position(|v| v[0].pattern.kind == k);
-        let mut order: Vec<usize> = family_order(&q).into_iter().filter_map(index).collect();
+        let cues = crate::cues::cues(&small);
+        let classes = class_distances(&q, &cues);
+        let mut class_distance = vec![f64::INFINITY; starts.len()];
+        let mut order = Vec::new();
+        for (kind, distance) in classes.into_iter().filter_map(|(c, d)| Some((c?, d))) {
+            if let Some(i) = index(kind) {
+                class_distance[i] = distance;
+                order.push(i);
+            }
+        }
         let unknown: Vec<usize> = (0..starts.len()).filter(|i| !order.contains(i)).collect();
         order.extend(unknown);
         Suggester {
             order,
-            dark_network: crate::cues::dark_skewness(&small) < DARK_NETWORK_SKEWNESS,
+            class_distance,
+            // The same value as `cues::dark_skewness` (tested there).
+            dark_network: cues[crate::cues::SKEWNESS] < DARK_NETWORK_SKEWNESS,
             unreduced,
             small,
             texels_per_small,

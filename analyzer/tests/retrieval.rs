@@ -19,7 +19,10 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the ranking last changed: 198 of 432 (45.8 %) with the
+/// The rate measured on all 432 cases when the ranking last changed: 183 of 432 (42.4 %) since the
+/// classifier reads the photo's cues and its opinion orders the fitted families
+/// (`retrieve::CLASSIFIER_WEIGHT`: perlin 2, grid 24, brick 29, cells 24, wood lines 38 of 48;
+/// the development set's structured patches labelled 51 → 56 of 100); 198 before, with the
 /// classifier trained on the corpus's three batches (190 with the first two) since the families
 /// that the family classifier puts first are fitted and ordered by their renders
 /// (`retrieve::RENDER_ORDERED`). The classifier was trained on photos of materials, not on clean
@@ -32,7 +35,7 @@ const QUICK_STRIDE: usize = 3;
 /// texture, 259 (266 with the third batch; not kept: the benchmarks' brick crop lost its family
 /// and its speed). The test guards against a regression: the rate plus two
 /// standard errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
-const MEASURED_RATE: f32 = 198.0 / 432.0;
+const MEASURED_RATE: f32 = 183.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
@@ -112,7 +115,8 @@ fn synthetic_round_trip_finds_the_right_family() {
         100.0 * se,
         100.0 * MEASURED_RATE
     );
-    // Measured on all 432 cases: median 3.01, 90th percentile 5.03 (5.15 with the first two
+    // Measured on all 432 cases: median 3.01, 90th percentile 5.08 (5.03 before the classifier's
+    // cues and opinion in the order; 5.15 with the first two
     // batches; 2.55 and 3.67 with the family nearest by retrieval fitted beside the classifier's
     // three).
     assert!(median <= 3.3 && p90 <= 5.6, "median {median}, p90 {p90}");
@@ -177,7 +181,8 @@ fn the_refinement_refines_the_classifiers_first_three_families() {
         let photo = common::dev_quadrant(name);
         let map = proctex::two_tone::two_tone(&photo).structure;
         let (q, _) = proctex::db::query(&map, photo.width as usize, photo.height as usize);
-        let mut chosen: Vec<&str> = family_order(&q)
+        let cues = proctex::cues::cues(&photo);
+        let mut chosen: Vec<&str> = family_order(&q, &cues)
             .iter()
             .take(RENDER_ORDERED)
             .map(|k| k.name())

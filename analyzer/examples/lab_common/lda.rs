@@ -131,8 +131,13 @@ pub fn fit(xs: &[(Vec<f64>, usize)], classes: usize, ridge: f64, dims: usize) ->
     for v in w.iter_mut() {
         *v /= tot;
     }
+    let diagonal = std::env::var("CORPUS_LAB_DIAG_RIDGE").is_ok();
     for i in 0..n {
-        w[i * n + i] += ridge * tr;
+        w[i * n + i] += if diagonal {
+            ridge * w[i * n + i]
+        } else {
+            ridge * tr
+        };
     }
     let mut b = vec![0.0; n * n];
     for c in 0..classes {

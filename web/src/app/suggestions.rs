@@ -189,7 +189,7 @@ impl ProctexApp {
                     .distance
                     .map_or("fitting…".into(), |d| format!("{d:.3}"));
                 // The noise model and the families the classifier puts first come first, ordered
-                // by their fitted renders; the other families follow in the classifier's order
+                // by their fitted renders and the classifier's opinion; the other families follow in the classifier's order
                 // (`Suggester::ranked`), their scores their structure distances.
                 let compared = row.render_ordered;
                 let mut tip = format!(
@@ -197,7 +197,7 @@ impl ProctexApp {
                     row.name,
                     row.score,
                     if compared {
-                        "the first models are compared by their fitted renders"
+                        "the first models are compared by their fitted renders and the family classifier"
                     } else {
                         "after the models compared by their renders; score by structure distance"
                     }

@@ -301,12 +301,14 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
         ranking += &format!(
             "candidates, nearest first (score: for the {n} patterns the family classifier puts \
              first, {s:.1} × structure + {t:.1} × texture \
-             distance + margin, and the noise model's texture distance against the best of \
+             distance + {c} × half its class's distance in the classifier beyond the nearest's × \
+             the photo's self distance + margin, and the noise model's texture distance against the best of \
              them; then the other patterns in the classifier's order, score structure distance \
              + margin):\n",
             n = proctex::retrieve::RENDER_ORDERED,
             s = 1.0 - proctex::retrieve::TEXTURE_WEIGHT,
             t = proctex::retrieve::TEXTURE_WEIGHT,
+            c = proctex::retrieve::CLASSIFIER_WEIGHT,
         );
         for s in suggestions {
             let texture = s
