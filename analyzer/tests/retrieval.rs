@@ -170,7 +170,8 @@ fn the_noise_model_chosen_on_a_small_photo_is_its_own_analysis() {
 }
 
 /// The refinement refines the classifier's first three families, whose fits order the list, and
-/// no other (each marked skipped); they are the list's fitted families, with the noise model.
+/// no other (each marked skipped); they are the list's fitted families, the best by score first
+/// and the others in the classifier's order, with the noise model first or right after them.
 #[test]
 fn the_refinement_refines_the_classifiers_first_three_families() {
     use proctex::family_classifier::family_order;
@@ -195,12 +196,23 @@ fn the_refinement_refines_the_classifiers_first_three_families() {
             assert_eq!(s.render_ordered, fitted, "{name}: {}", s.name);
             assert_eq!(s.distance.is_some(), fitted, "{name}: {}", s.name);
         }
-        // The first rows are the noise model and those families, in some order.
-        let mut head: Vec<&str> = ranked[..=RENDER_ORDERED].iter().map(|s| s.name).collect();
-        head.sort();
-        chosen.push("noise");
-        chosen.sort();
-        assert_eq!(head, chosen, "{name}");
+        // The first rows are the noise model, first or right after those families, and those
+        // families: the best by score first, the others in the classifier's order.
+        let head: Vec<&str> = ranked[..=RENDER_ORDERED].iter().map(|s| s.name).collect();
+        let noise = head.iter().position(|&n| n == "noise");
+        assert!(
+            matches!(noise, Some(0 | RENDER_ORDERED)),
+            "{name}: {head:?}"
+        );
+        let families: Vec<&str> = head.iter().copied().filter(|&n| n != "noise").collect();
+        let best = ranked[..=RENDER_ORDERED]
+            .iter()
+            .filter(|s| s.pattern.is_some())
+            .min_by(|a, b| a.score.total_cmp(&b.score))
+            .expect("fitted families");
+        assert_eq!(families[0], best.name, "{name}: {head:?}");
+        chosen.retain(|&n| n != best.name);
+        assert_eq!(families[1..], chosen[..], "{name}: {head:?}");
     }
 }
 
