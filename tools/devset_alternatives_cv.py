@@ -26,12 +26,9 @@ Usage: tools/devset_alternatives_cv.py RUN.jsonl
 import json
 import sys
 
+from devset_classifier_weight_cv import DARK_NETWORK_SKEWNESS, FITTED, FOLDS, SKEWNESS
 from devset_occam_cv import fold_of, ranking_rows
 
-SKEWNESS = 7  # cues::CUE_NAMES index of "skewness"
-DARK_NETWORK_SKEWNESS = -0.599
-FITTED = 3  # retrieve::RENDER_ORDERED
-FOLDS = 4
 ORDERS = [("score", "score"), ("classifier", "score"), ("score", "after"),
           ("classifier", "after")]
 

@@ -29,7 +29,7 @@
 mod lab_common;
 
 use lab_common::lda::{fit, project, scores};
-use proctex::cues::{CUES, cues};
+use proctex::cues::{CUE_NAMES, CUES, cues};
 use proctex::db::query;
 use proctex::family_classifier::{descriptor_features, features};
 use proctex::gabor::{Descriptor, LEN};
@@ -89,8 +89,11 @@ fn describe(photo: &Photo) -> Descriptor {
     }
     let mut c = cues(photo);
     if std::env::var("CORPUS_LAB_NO_LINES").is_ok() {
-        c[10] = 0.0;
-        c[11] = 0.0;
+        for (v, name) in c.iter_mut().zip(CUE_NAMES) {
+            if matches!(name, "straight_lines" | "crossing_lines") {
+                *v = 0.0;
+            }
+        }
     }
     d.0.extend(c);
     d

@@ -155,10 +155,10 @@ impl Suggester {
     /// [`TEXTURE_WEIGHT`]'s blend of their structure and *texture distance* (the fitted render
     /// projected on the photo's tone line, described) plus the margin and the classifier's term
     /// ([`CLASSIFIER_WEIGHT`]); the best score is the first family, and every other family
-    /// follows in the classifier's order, then those it does not know by retrieval distance. The noise model has no bare structure; it is ranked
-    /// against the best family by texture distance: noise comes first when its texture distance
-    /// is below the best family's plus the margin, and otherwise right after the fitted families
-    /// (never after an unfitted one). Its `score` is its texture distance moved onto the best
+    /// follows in the classifier's order, then those it does not know by retrieval distance.
+    /// The noise model has no bare structure; it is ranked against the best family by texture
+    /// distance: noise comes first when its texture distance is below the best family's plus
+    /// the margin, and otherwise right after the fitted families (never after an unfitted one). Its `score` is its texture distance moved onto the best
     /// family's scale (minus the best family's texture − score difference, minus the margin). On
     /// a photo with a dark network ([`DARK_NETWORK_SKEWNESS`]) the noise model follows the fitted
     /// families whatever its score.
@@ -172,10 +172,11 @@ impl Suggester {
     /// the first choice, hence the labelled and served rates, is the same by construction; the
     /// criterion is a labelled family among the first three) among every candidate by its
     /// score (before), the families after the first in the classifier's order, and each with
-    /// the noise model after the fitted families, two folds chose this order, one the classifier's
-    /// order with the noise model by score, one the score order with the noise model after; held out, a labelled family among the first three on 80 → 84
-    /// of the 100 structured patches; on the whole set 80 → 92 (measured in full: 92, the same
-    /// 208 first choices).
+    /// the noise model after the fitted families, two folds chose this order, one the
+    /// classifier's order with the noise model by score, one the score order with the noise
+    /// model after; held out, a labelled family among the first three on 80 → 84 of the 100
+    /// structured patches; on the whole set 80 → 92 (measured in full: 92, the same 208 first
+    /// choices).
     pub fn suggestions(&self, db: &Db) -> Vec<Suggestion> {
         self.ranked(db, usize::MAX)
     }
@@ -193,7 +194,7 @@ impl Suggester {
             .noise_fit
             .clone()
             .unwrap_or_else(|| self.fit_noise_with(db, &tile));
-        let noise = Suggestion {
+        let mut noise = Suggestion {
             name: "noise",
             pattern: None,
             distance: Some(distance),
@@ -270,22 +271,20 @@ impl Suggester {
             families[..=first].rotate_right(1);
         }
         let rest = families.split_off(ordered);
-        let mut noise = noise;
-        noise.score = match families.first() {
-            Some(best) => {
-                // Its texture distance moved onto the best family's scale.
-                let best_distance = best.distance.expect("the best family is fitted");
-                distance - (best_distance - best.score) - margin
-            }
-            None => distance,
-        };
-        // The noise model is first when its score is no larger than the best family's, except
-        // on a photo with a dark network; otherwise it follows the fitted families: still
-        // offered, never first, and not among the first three where the fitted families fill
-        // them.
+        // The noise model's score is its texture distance moved onto the best family's scale.
+        // It is first when that is no larger than the best family's score, except on a photo
+        // with a dark network; otherwise it follows the fitted families: still offered, never
+        // first, and not among the first three where the fitted families fill them.
         let noise_first = match families.first() {
-            Some(best) => !self.dark_network && noise.score <= best.score,
-            None => true,
+            Some(best) => {
+                let best_distance = best.distance.expect("the best family is fitted");
+                noise.score = distance - (best_distance - best.score) - margin;
+                !self.dark_network && noise.score <= best.score
+            }
+            None => {
+                noise.score = distance;
+                true
+            }
         };
         let mut out = Vec::with_capacity(families.len() + rest.len() + 1);
         if noise_first {

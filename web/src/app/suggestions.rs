@@ -188,8 +188,9 @@ impl ProctexApp {
                 let texture = row
                     .distance
                     .map_or("fitting…".into(), |d| format!("{d:.3}"));
-                // The noise model and the families the classifier puts first come first, ordered
-                // by their fitted renders and the classifier's opinion; the other families follow in the classifier's order
+                // The noise model and the families the classifier puts first come first: the best
+                // by its fitted render and the classifier's opinion, the others in the
+                // classifier's order; the other families follow in that order too
                 // (`Suggester::ranked`), their scores their structure distances.
                 let compared = row.render_ordered;
                 let mut tip = format!(

@@ -299,12 +299,12 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
     let mut ranking = String::new();
     if !suggestions.is_empty() {
         ranking += &format!(
-            "candidates, nearest first (score: for the {n} patterns the family classifier puts \
-             first, {s:.1} × structure + {t:.1} × texture \
-             distance + {c} × half its class's distance in the classifier beyond the nearest's × \
-             the photo's self distance + margin, and the noise model's texture distance against the best of \
-             them; then the other patterns in the classifier's order, score structure distance \
-             + margin):\n",
+            "candidates, the best first (score: for the {n} patterns the family classifier puts \
+             first, {s:.1} × structure + {t:.1} × texture distance + {c} × half its class's \
+             distance in the classifier beyond the nearest's × the photo's self distance + \
+             margin, the best of them first and the others in the classifier's order, the noise \
+             model first or after them by its texture distance against the best; then the other \
+             patterns in the classifier's order, score structure distance + margin):\n",
             n = proctex::retrieve::RENDER_ORDERED,
             s = 1.0 - proctex::retrieve::TEXTURE_WEIGHT,
             t = proctex::retrieve::TEXTURE_WEIGHT,
