@@ -319,29 +319,33 @@ fn evaluated_variance(c: &[f64], n: usize, dims: usize) -> f64 {
         26.0 / 120.0,
         1.0 / 120.0,
     ];
+    // Along every axis in turn, each output the five taps' sum in tap order (what convolving
+    // one line at a time gives, bit for bit), with whole rows of the axes below moving together
+    // so that no pass walks the tile with a stride of a row or a plane (a 512² tile's variance
+    // took a fifth of its generation that way).
     let mut f = c.to_vec();
-    let mut line = vec![0.0; n];
-    let mut values = vec![0.0; n];
-    // The wrapped neighbours' positions along a line, once.
-    let neighbours: Vec<[usize; 5]> = (0..n)
-        .map(|i| std::array::from_fn(|d| (i + n + d - 2) % n))
-        .collect();
+    let mut g = vec![0.0; c.len()];
     for axis in 0..dims {
-        for_each_line(n, dims, axis, |start, stride| {
-            for (i, v) in values.iter_mut().enumerate() {
-                *v = f[start + i * stride];
-            }
-            for (l, ks) in line.iter_mut().zip(&neighbours) {
-                let mut s = 0.0;
-                for (a, &k) in AUTO.iter().zip(ks) {
-                    s += a * values[k];
+        let stride = n.pow(axis as u32);
+        for (from, to) in f
+            .chunks_exact(stride * n)
+            .zip(g.chunks_exact_mut(stride * n))
+        {
+            for (i, out) in to.chunks_exact_mut(stride).enumerate() {
+                let taps: [&[f64]; 5] = std::array::from_fn(|d| {
+                    let k = (i + n + d - 2) % n;
+                    &from[k * stride..(k + 1) * stride]
+                });
+                for (j, o) in out.iter_mut().enumerate() {
+                    let mut s = 0.0;
+                    for (a, t) in AUTO.iter().zip(&taps) {
+                        s += a * t[j];
+                    }
+                    *o = s;
                 }
-                *l = s;
             }
-            for i in 0..n {
-                f[start + i * stride] = line[i];
-            }
-        });
+        }
+        std::mem::swap(&mut f, &mut g);
     }
     c.iter().zip(&f).map(|(a, b)| a * b).sum::<f64>() / c.len() as f64
 }
