@@ -158,10 +158,11 @@ impl Suggester {
     /// follows in the classifier's order, then those it does not know by retrieval distance.
     /// The noise model has no bare structure; it is ranked against the best family by texture
     /// distance: noise comes first when its texture distance is below the best family's plus
-    /// the margin, and otherwise right after the fitted families (never after an unfitted one). Its `score` is its texture distance moved onto the best
-    /// family's scale (minus the best family's texture − score difference, minus the margin). On
-    /// a photo with a dark network ([`DARK_NETWORK_SKEWNESS`]) the noise model follows the fitted
-    /// families whatever its score.
+    /// the margin, and otherwise right after the fitted families (never after an unfitted one).
+    /// Its `score` is its texture distance moved onto the best family's scale (minus the best
+    /// family's texture − score difference, minus the margin). On a photo with a dark network
+    /// ([`DARK_NETWORK_SKEWNESS`]) the noise model follows the fitted families whatever its
+    /// score.
     ///
     /// Why the alternatives keep the classifier's order (ours): the first family is chosen by
     /// its fitted render; the alternatives offered next are the families the classifier believes
