@@ -30,6 +30,8 @@ struct MorphKey {
     quat: vec4<f32>,
     // ln(scale), rotation (degrees), turn to the segment's other end the shorter way (degrees)
     pose: vec4<f32>,
+    // the finest band's part after the histogram per channel, unused
+    fine: vec4<f32>,
     // [band] → weight of channels 0, 1, 2
     weights: array<vec4<f32>, 12>,
     // [band] → asin √(orientation strength) (the phase that interpolates), streak angle (degrees), turn to the segment's other end
@@ -160,6 +162,7 @@ fn morph(seg: MorphSegment, t: f32) -> Params {
         energy += w * w;
     }
     p.sigma = sqrt(energy);
+    p.fine = max(a.fine + t * (b.fine - a.fine), vec4<f32>(0.0));
     p.offsets = MORPH_OFFSETS;
     var grad_var = gradient_variance2();
     if (seg.counts.z != 0u) {

@@ -17,6 +17,8 @@ struct Params {
     counts: vec4<u32>,
     // σ_M per channel
     sigma: vec4<f32>,
+    // per channel the finest band's amplitude drawn after the histogram (0: Lagae's model)
+    fine: vec4<f32>,
     // [band] → weight of channels 0, 1, 2
     weights: array<vec4<f32>, 12>,
     // [band] → offset (x, y, z) in coefficient units (the three channels read their own tile

@@ -16,11 +16,16 @@ struct Seamless {
 
 @group(1) @binding(0) var<uniform> seamless: Seamless;
 
-fn texture_noise_wrapped(a: vec2<f32>) -> vec3<f32> {
-    var sum = vec3<f32>(0.0);
+fn texture_noise_wrapped(a: vec2<f32>) -> ChannelNoise {
+    var n = ChannelNoise(vec3<f32>(0.0), vec3<f32>(0.0));
     for (var j = 0u; j < params.counts.x; j++) {
-        let w = params.weights[j].xyz * band_fade(j, seamless.tile.y);
-        if (all(w == vec3<f32>(0.0))) {
+        let fade = band_fade(j, seamless.tile.y);
+        let w = params.weights[j].xyz * fade;
+        var fw = vec3<f32>(0.0);
+        if (j == 0u) {
+            fw = params.fine.xyz * fade;
+        }
+        if (all(w == vec3<f32>(0.0)) && all(fw == vec3<f32>(0.0))) {
             continue;
         }
         let m = seamless.periods[j / 4u][j % 4u];
@@ -33,9 +38,10 @@ fn texture_noise_wrapped(a: vec2<f32>) -> vec3<f32> {
         } else {
             v = noise2_periodic_oriented(p, vec2<f32>(m, m), mix);
         }
-        sum += w * v;
+        n.sum += w * v;
+        n.fine += fw * v;
     }
-    return sum;
+    return n;
 }
 
 fn pattern_wrapped(a: vec2<f32>) -> f32 {

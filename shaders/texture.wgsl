@@ -12,13 +12,25 @@ fn texel(world: vec3<f32>) -> vec3<f32> {
     );
 }
 
+// The three channels' noise at a point: the weighted sum of bands that the histogram maps,
+// and the finest band's part drawn after it (params.fine).
+struct ChannelNoise {
+    sum: vec3<f32>,
+    fine: vec3<f32>,
+}
+
 // The three channels' multiresolution noise: every band read once (one RGBA fetch per tap),
-// its tile components weighted per channel.
-fn texture_noise(u: vec3<f32>, log2_fp: f32) -> vec3<f32> {
-    var sum = vec3<f32>(0.0);
+// its tile components weighted per channel; the finest band's part after the histogram apart.
+fn texture_noise(u: vec3<f32>, log2_fp: f32) -> ChannelNoise {
+    var n = ChannelNoise(vec3<f32>(0.0), vec3<f32>(0.0));
     for (var j = 0u; j < params.counts.x; j++) {
-        let w = params.weights[j].xyz * band_fade(j, log2_fp);
-        if (all(w == vec3<f32>(0.0))) {
+        let fade = band_fade(j, log2_fp);
+        let w = params.weights[j].xyz * fade;
+        var fw = vec3<f32>(0.0);
+        if (j == 0u) {
+            fw = params.fine.xyz * fade;
+        }
+        if (all(w == vec3<f32>(0.0)) && all(fw == vec3<f32>(0.0))) {
             continue;
         }
         let f = 1.0 / f32(1u << j);
@@ -41,15 +53,17 @@ fn texture_noise(u: vec3<f32>, log2_fp: f32) -> vec3<f32> {
                 v = noise2_oriented(p, m);
             }
         }
-        sum += w * v;
+        n.sum += w * v;
+        n.fine += fw * v;
     }
-    return sum;
+    return n;
 }
 
-// The colour of the three channels' noise values g on the structured models' ramp colour base
-// (ignored by the noise model): histogram matching, contrast, back to RGB, then the model's
-// output tone curve.
-fn colour(g: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
+// The colour of the three channels' noise n on the structured models' ramp colour base
+// (ignored by the noise model): histogram matching of the bands' sum, the finest band's part
+// after it, contrast, back to RGB, then the model's output tone curve.
+fn colour(n: ChannelNoise, base: vec3<f32>) -> vec3<f32> {
+    let g = n.sum;
     var rgb = params.mean.xyz;
     if (params.pattern.x != 0u) {
         for (var i = 0u; i < 3u; i++) {
@@ -66,6 +80,7 @@ fn colour(g: vec3<f32>, base: vec3<f32>) -> vec3<f32> {
         } else {
             v = g[c];
         }
+        v += n.fine[c];
         let cv = params.mean.w * v;
         rgb += cv * params.basis[c].xyz;
     }

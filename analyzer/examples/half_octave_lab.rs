@@ -55,9 +55,11 @@ fn half_density(k: usize, t: usize) -> f64 {
 /// The product's own model of `src` (orientation as `oriented`): rendered as it is (`exact`
 /// false) or its channel noise rank-matched to the patch's decorrelated values.
 fn product(src: &Photo, seed: u32, oriented: bool, exact: bool) -> Photo {
+    // Lagae's model: every band through the histogram (the lab rank-matches their sum).
     let opts = Options {
         seed,
         orientation: oriented,
+        fine_gaussian: false,
         ..Options::default()
     };
     let params = analyze_photo(src, &opts).expect("analysis").params;
@@ -73,7 +75,7 @@ fn product(src: &Photo, seed: u32, oriented: bool, exact: bool) -> Photo {
         for x in 0..w {
             let u = prep.texel([x as f32 + 0.5, y as f32 + 0.5, 0.0]);
             let g = texture_noise(&prep, &tile, u, log2_fp);
-            for (o, v) in noise.iter_mut().zip(g) {
+            for (o, v) in noise.iter_mut().zip(g.sum) {
                 o.push(v);
             }
         }
@@ -98,6 +100,7 @@ fn synthesise(rung: usize, src: &Photo, seed: u32) -> Photo {
         seed,
         tone: false,
         orientation: false,
+        fine_gaussian: false,
         ..Options::default()
     };
     let params = analyze_photo(src, &opts).expect("analysis").params;

@@ -44,6 +44,10 @@ pub struct Options {
     /// Fit the noise model's output tone curve ([`crate::noise_tone`]; only with the
     /// histogram on); off: Lagae's independent channels alone.
     pub tone: bool,
+    /// Draw the finest band Gaussian after the histogram
+    /// ([`crate::params::NoiseModel::finest_band_gaussian`]); off: Lagae's histogram on the sum
+    /// of every band.
+    pub fine_gaussian: bool,
 }
 
 impl Default for Options {
@@ -58,6 +62,7 @@ impl Default for Options {
             periodic: true,
             orientation: true,
             tone: true,
+            fine_gaussian: true,
         }
     }
 }
@@ -338,17 +343,28 @@ pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
             },
             orientation,
             tone: None,
+            fine: [0.0; 3],
         }),
         source: None,
     };
     // The curve is a second round of Lagae's histogram matching: off with it.
     if opts.tone
         && opts.histogram
-        && let (Some(a), Model::Noise(n)) =
-            (allocate(photo, &params, &candidates), &mut params.model)
+        && let (Some(a), Model::Noise(n)) = (
+            allocate(photo, &params, &candidates, opts.fine_gaussian),
+            &mut params.model,
+        )
     {
         n.histogram.knots = a.knots;
         n.tone = a.tone;
+        if let Some((fine, weights)) = a.fine {
+            n.fine = fine;
+            n.weights = weights;
+        }
+    } else if opts.fine_gaussian
+        && let Model::Noise(n) = &mut params.model
+    {
+        n.finest_band_gaussian();
     }
     Analysis {
         params,

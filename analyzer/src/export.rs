@@ -127,11 +127,12 @@ fn params_value(p: &Prepared, lang: Lang) -> String {
     let (tone_knots, tone_tangents) = (tone_array(&p.tone_knots), tone_array(&p.tone_tangents));
     // WGSL allows a trailing comma in a constructor; GLSL does not.
     format!(
-        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {orient},\n    {knots},\n    {tangents},\n    {},\n    {},\n    {values},\n    {octaves},\n    {ramp},\n    {tone_range},\n    {tone_knots},\n    {tone_tangents}\n)",
+        "Params(\n    {},\n    {basis},\n    {},\n    {},\n    {},\n    {},\n    {weights},\n    {offsets},\n    {orient},\n    {knots},\n    {tangents},\n    {},\n    {},\n    {values},\n    {octaves},\n    {ramp},\n    {tone_range},\n    {tone_knots},\n    {tone_tangents}\n)",
         lang.vec4([p.mean[0], p.mean[1], p.mean[2], p.contrast]),
         lang.vec4([p.inv_scale, p.rot[0], p.rot[1], 0.0]),
         lang.uvec4([p.bands, p.knots, p.solid as u32, p.histogram as u32]),
         lang.vec4([p.sigma[0], p.sigma[1], p.sigma[2], 0.0]),
+        lang.vec4([p.fine[0], p.fine[1], p.fine[2], 0.0]),
         lang.uvec4(p.pattern),
         lang.vec4(p.pattern_transform),
     )

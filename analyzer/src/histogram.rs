@@ -29,6 +29,34 @@ pub fn knot_probability(j: usize, k: usize) -> f64 {
     phi_f64(z)
 }
 
+/// The standard deviation of `F⁻¹(Φ(Z))`, `Z` standard normal, for the inverse-CDF spline
+/// through `knots` as the renderer evaluates it (clamped to its end knots past `±KNOT_Z`):
+/// the midpoint rule over 400 steps of `z ∈ [−KNOT_Z, KNOT_Z]` weighted by the normal density,
+/// the tails beyond at the end knots.
+pub fn spline_sd(knots: &[f32]) -> f64 {
+    const STEPS: usize = 400;
+    let tangents = fc_tangents(knots);
+    let z_max = KNOT_Z as f64;
+    let tail = phi_f64(-z_max);
+    let (first, last) = (knots[0] as f64, knots[knots.len() - 1] as f64);
+    let (mut m0, mut m1, mut m2) = (
+        2.0 * tail,
+        tail * (first + last),
+        tail * (first * first + last * last),
+    );
+    let dz = 2.0 * z_max / STEPS as f64;
+    for i in 0..STEPS {
+        let z = -z_max + (i as f64 + 0.5) * dz;
+        let weight = (-0.5 * z * z).exp() / (2.0 * std::f64::consts::PI).sqrt() * dz;
+        let v = spline_eval(knots, &tangents, ((z + z_max) / (2.0 * z_max)) as f32) as f64;
+        m0 += weight;
+        m1 += weight * v;
+        m2 += weight * v * v;
+    }
+    let mean = m1 / m0;
+    (m2 / m0 - mean * mean).max(0.0).sqrt()
+}
+
 /// Standard normal CDF.
 pub fn phi_f64(x: f64) -> f64 {
     0.5 * erfc_f64(-x / std::f64::consts::SQRT_2)
@@ -565,6 +593,16 @@ mod tests {
             assert!(y >= prev - 1e-6, "not monotone at {i}");
             prev = y;
         }
+    }
+
+    #[test]
+    fn spline_sd_is_the_spread_of_a_linear_curve_and_grows_with_its_tails() {
+        let linear: Vec<f32> = (0..=10).map(|j| 0.1 * (-2.5 + 0.5 * j as f32)).collect();
+        let sd = spline_sd(&linear);
+        assert!((sd - 0.1).abs() < 0.002, "{sd}");
+        let heavy: Vec<f32> = linear.iter().map(|&v| v + 40.0 * v * v * v).collect();
+        assert!(spline_sd(&heavy) > 1.2 * sd);
+        assert_eq!(spline_sd(&[0.3; 11]), 0.0);
     }
 
     #[test]

@@ -171,6 +171,7 @@ pub fn morph(a: &Params, b: &Params, t: f32) -> Result<Params> {
     let noise = NoiseModel {
         orientation: morph_orientation(ma, mb, bands, t),
         tone: None,
+        fine: [0, 1, 2].map(|c| lerp(ma.fine[c], mb.fine[c], t).max(0.0)),
         weights,
         histogram: Histogram {
             enabled,

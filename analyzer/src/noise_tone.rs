@@ -20,7 +20,7 @@
 use crate::colour::ColourQuantiles;
 use crate::input::Photo;
 use crate::params::{Params, Tone};
-use crate::render::{Prepared, colour, texture_noise, tile_for};
+use crate::render::{ChannelNoise, Prepared, colour, texture_noise, tile_for};
 
 /// Seed of the first realisation sampled by [`fit_noise_tone`] and [`allocate`]: fixed, not the params' own, so that
 /// analyses differing only in their seed share the curve (it is a property of the model), and
@@ -52,10 +52,11 @@ pub const HISTOGRAM_INTERVALS: [usize; 4] = [4, 6, 8, 10];
 pub const MAX_NOISE_TONE_KNOTS: usize = 33;
 
 /// The numbers in a noise model's document that are not knots: 3 weights and, where any band
-/// is oriented, 2 orientation numbers per band, plus the colour block (3 mean, 9 basis, 1
-/// contrast).
+/// is oriented, 2 orientation numbers per band, the finest band's 3 parts after the histogram
+/// where it has them, plus the colour block (3 mean, 9 basis, 1 contrast).
 pub fn fixed_numbers(model: &crate::params::NoiseModel) -> usize {
-    model.bands() * 3 + model.orientation.len() * 2 + 13
+    let fine = if model.fine == [0.0; 3] { 0 } else { 3 };
+    model.bands() * 3 + model.orientation.len() * 2 + fine + 13
 }
 
 /// All the numbers of a noise model's document counted against [`PARAMETER_BUDGET`].
@@ -72,17 +73,19 @@ pub fn tone_numbers(knots: usize) -> usize {
 
 /// The model's channel noise at sample points: [`NOISE_TONE_SEEDS`] realisations (seeds
 /// [`FIT_SEED`], …) on a regular grid over `width × height` texels, about [`SAMPLES_PER_SEED`]
-/// points each. The noise does not depend on the knots, so every candidate colours the same
-/// samples.
-fn channel_samples(params: &Params, width: u32, height: u32) -> Vec<[f32; 3]> {
+/// points each; the finest band's part after the histogram unweighted (a part of 1 in every
+/// channel), which [`coloured`] scales by the model's own. The noise does not depend on the
+/// knots or that part, so every candidate colours the same samples.
+fn channel_samples(params: &Params, width: u32, height: u32) -> Vec<ChannelNoise> {
     let n = width as usize * height as usize;
     let stride = ((n as f64 / SAMPLES_PER_SEED as f64).sqrt().floor() as usize).max(1);
     let seeds: Vec<u32> = (0..NOISE_TONE_SEEDS).collect();
     crate::parallel::map_in_order(&seeds, |&k| {
-        let p = Params {
+        let mut p = Params {
             seed: FIT_SEED + k,
             ..params.clone()
         };
+        p.model.noise_layer_mut().fine = [1.0; 3];
         let (prep, tile) = (Prepared::new(&p), tile_for(&p));
         let scale = params.transform.scale;
         let mut out = Vec::with_capacity(n / (stride * stride) + 1);
@@ -99,11 +102,17 @@ fn channel_samples(params: &Params, width: u32, height: u32) -> Vec<[f32; 3]> {
 }
 
 /// The colours of `params` (its histogram, no tone curve) at channel noise `samples`.
-fn coloured(params: &Params, samples: &[[f32; 3]]) -> Vec<[f32; 3]> {
+fn coloured(params: &Params, samples: &[ChannelNoise]) -> Vec<[f32; 3]> {
     let prep = Prepared::new(params);
     samples
         .iter()
-        .map(|&g| colour(&prep, g, prep.mean))
+        .map(|&g| {
+            let n = ChannelNoise {
+                sum: g.sum,
+                fine: [0, 1, 2].map(|c| g.fine[c] * prep.fine[c]),
+            };
+            colour(&prep, n, prep.mean)
+        })
         .collect()
 }
 
@@ -138,6 +147,10 @@ pub struct HistogramCandidate {
 pub struct Allocation {
     /// The histogram's knots per channel.
     pub knots: [Vec<f32>; 3],
+    /// The finest band's part after the histogram ([`crate::params::NoiseModel::fine`]) and
+    /// the band weights that go with it (the finest band's moved there), when the allocation
+    /// split it; `None` otherwise.
+    pub fine: Option<([f32; 3], [Vec<f32>; 3])>,
     /// The output tone curve, if one was worth its numbers.
     pub tone: Option<Tone>,
     /// The colour distance it leaves on the half of the photo its curve was not fitted to
@@ -164,10 +177,15 @@ pub struct Allocation {
 /// wrong on small crops (colour 1.44, several 128² crops worse than without a curve: a curve
 /// matches the distance's three RGB directions exactly); scored on the other half with the
 /// histogram of the whole photo, it favoured no curve (the histogram had seen both halves).
+///
+/// With `fine_gaussian`, every candidate histogram is scored as the model renders it with its
+/// finest band split off ([`crate::params::NoiseModel::finest_band_gaussian`], which depends on
+/// the knots), so the curve is fitted to that render.
 pub fn allocate(
     photo: &Photo,
     params: &Params,
     histograms: &[HistogramCandidate],
+    fine_gaussian: bool,
 ) -> Option<Allocation> {
     let crate::params::Model::Noise(model) = &params.model else {
         return None;
@@ -175,7 +193,19 @@ pub fn allocate(
     if photo.pixels.len() < 64 || model.tone.is_some() || histograms.is_empty() {
         return None;
     }
-    let samples = channel_samples(params, photo.width, photo.height);
+    // The model with `knots`, split when asked (its band weights do not depend on the knots).
+    let model_with = |knots: &[Vec<f32>; 3]| {
+        let mut m = model.clone();
+        m.histogram.knots = knots.clone();
+        if fine_gaussian {
+            m.finest_band_gaussian();
+        }
+        m
+    };
+    let split = model_with(&model.histogram.knots);
+    let mut sampled = params.clone();
+    *sampled.model.noise_layer_mut() = split.clone();
+    let samples = channel_samples(&sampled, photo.width, photo.height);
     // Two folds: the photo's top and bottom halves. A split is scored by curves fitted on one
     // half and compared with the other: fitted and scored on the same pixels, a curve matches
     // the three RGB directions of the distance exactly and always looks best.
@@ -205,12 +235,10 @@ pub fn allocate(
             .map(|px| [0, 1, 2].map(|c| curve(c, px[c])))
             .collect()
     };
-    let fixed = fixed_numbers(model);
+    let fixed = fixed_numbers(&split);
     let with_knots = |knots: &[Vec<f32>; 3]| {
         let mut p = params.clone();
-        if let crate::params::Model::Noise(m) = &mut p.model {
-            m.histogram.knots = knots.clone();
-        }
+        p.model = crate::params::Model::Noise(model_with(knots));
         coloured(&p, &samples)
     };
     // Every candidate's options scored in parallel (native), then reduced in order.
@@ -258,16 +286,17 @@ pub fn allocate(
         }
     }
     let (distance, i, tone_knots) = best?;
-    let knots = histograms[i].whole.clone();
+    let chosen = model_with(&histograms[i].whole);
     let tone = (tone_knots > 0).then(|| {
         quantile_match(
-            std::slice::from_ref(&with_knots(&knots)),
+            std::slice::from_ref(&with_knots(&histograms[i].whole)),
             &sorted_channels(photo),
             tone_knots,
         )
     });
     Some(Allocation {
-        knots,
+        fine: fine_gaussian.then(|| (chosen.fine, chosen.weights.clone())),
+        knots: chosen.histogram.knots,
         tone,
         distance: distance / 2.0,
     })

@@ -55,6 +55,9 @@ pub struct Prepared {
     pub tangents: [[f32; MAX_KNOTS]; 3],
     /// Per channel `σ_M` (Gaussian standard deviation of the unclamped model).
     pub sigma: [f32; 3],
+    /// Per channel the finest band's amplitude drawn after the histogram
+    /// ([`crate::params::NoiseModel::fine`]).
+    pub fine: [f32; 3],
     /// `1 / scale`.
     pub inv_scale: f32,
     /// cos and sin of the rotation.
@@ -97,6 +100,7 @@ impl Prepared {
             knot_values: [[0.0; MAX_KNOTS]; 3],
             tangents: [[0.0; MAX_KNOTS]; 3],
             sigma: model.sigma(),
+            fine: model.fine,
             inv_scale: 1.0 / params.transform.scale,
             rot: {
                 let r = params.transform.rotation_deg.to_radians();
@@ -163,7 +167,7 @@ impl Prepared {
 
     /// Size of [`Prepared::uniform_bytes`]: the `Params` struct of `shaders/params.wgsl`.
     pub const UNIFORM_SIZE: usize = 16
-        * (7 + MAX_BANDS
+        * (8 + MAX_BANDS
             + MAX_BANDS
             + MAX_BANDS
             + 2 * MAX_KNOTS
@@ -175,7 +179,8 @@ impl Prepared {
 
     /// The GPU uniform block, little-endian, laid out as `struct Params` in
     /// `shaders/params.wgsl` (every field a vec4): (mean, contrast), basis rows, (1/scale, cos, sin),
-    /// (bands, knots, solid, histogram) as u32, σ, weights[band], offsets[band], orient[band],
+    /// (bands, knots, solid, histogram) as u32, σ, the finest band's amplitude after the
+    /// histogram, weights[band], offsets[band], orient[band],
     /// knots[k], tangents[k], then the pattern: (kind, stops, seed, 0) as u32, its transform,
     /// its 8 values, its octave offsets, the ramp stops (RGB, at), and the output tone curve:
     /// `lo`, `1 / (hi − lo)`, knots[k], tangents[k].
@@ -202,6 +207,7 @@ impl Prepared {
                 .for_each(|x| tail.extend_from_slice(&x.to_le_bytes()))
         };
         g4([self.sigma[0], self.sigma[1], self.sigma[2], 0.0]);
+        g4([self.fine[0], self.fine[1], self.fine[2], 0.0]);
         for j in 0..MAX_BANDS {
             g4([
                 self.weights[0][j],
@@ -326,34 +332,51 @@ pub fn tile_for(params: &Params) -> Tile {
     }
 }
 
+/// The three channels' noise at a point: the weighted sum of bands that the histogram maps
+/// and the finest band's part drawn after it ([`crate::params::NoiseModel::fine`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ChannelNoise {
+    /// `Σ_j w_cj·fade_j·N_c(u·2^−j + o_j)`, the histogram's input.
+    pub sum: [f32; 3],
+    /// `fine_c·fade_0·N_c(u + o_0)`, added to the histogram's output.
+    pub fine: [f32; 3],
+}
+
 /// The multiresolution noise of the three channels at texel `u` (Lagae eq. 1 with band
 /// clamping): every band read once, its tile components weighted per channel.
 #[inline]
-pub fn texture_noise(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> [f32; 3] {
+pub fn texture_noise(prep: &Prepared, tile: &Tile, u: [f32; 3], log2_fp: f32) -> ChannelNoise {
     band_sum(prep, log2_fp, |j| band_noise(prep, tile, j, u))
 }
 
 /// The three channels' bands weighted and summed, band `j`'s noise values given by `band(j)`
-/// (asked only for bands with a weight at this footprint).
+/// (asked only for bands with a weight at this footprint); the finest band's part after the
+/// histogram apart.
 #[inline]
 pub(crate) fn band_sum(
     prep: &Prepared,
     log2_fp: f32,
     band: impl Fn(usize) -> [f32; 3],
-) -> [f32; 3] {
-    let mut sum = [0.0f32; 3];
+) -> ChannelNoise {
+    let mut out = ChannelNoise::default();
     for j in 0..prep.bands as usize {
         let fade = band_fade(j as u32, log2_fp);
         let w = [0, 1, 2].map(|c| prep.weights[c][j] * fade);
-        if w == [0.0; 3] {
+        let f = if j == 0 {
+            [0, 1, 2].map(|c| prep.fine[c] * fade)
+        } else {
+            [0.0; 3]
+        };
+        if w == [0.0; 3] && f == [0.0; 3] {
             continue;
         }
         let v = band(j);
         for c in 0..3 {
-            sum[c] += w[c] * v[c];
+            out.sum[c] += w[c] * v[c];
+            out.fine[c] += f[c] * v[c];
         }
     }
-    sum
+    out
 }
 
 /// Band `j`'s noise of the three channels at texel `u`, unweighted.
@@ -380,11 +403,13 @@ pub(crate) fn band_noise(prep: &Prepared, tile: &Tile, j: usize, u: [f32; 3]) ->
     }
 }
 
-/// The colour of the three channels' noise values `g` on the structured models' ramp colour
-/// `base` (ignored by the noise model): histogram matching (inverse CDF spline), contrast, back
-/// to RGB about the mean, then the model's output tone curve.
+/// The colour of the three channels' noise `n` on the structured models' ramp colour `base`
+/// (ignored by the noise model): histogram matching (inverse CDF spline) of the bands' sum, the
+/// finest band's part after it, contrast, back to RGB about the mean, then the model's output
+/// tone curve.
 #[inline]
-pub fn colour(prep: &Prepared, g: [f32; 3], base: [f32; 3]) -> [f32; 3] {
+pub fn colour(prep: &Prepared, n: ChannelNoise, base: [f32; 3]) -> [f32; 3] {
+    let g = n.sum;
     let mut rgb = prep.mean;
     if prep.pattern[0] != 0 {
         for i in 0..3 {
@@ -404,7 +429,7 @@ pub fn colour(prep: &Prepared, g: [f32; 3], base: [f32; 3]) -> [f32; 3] {
             prep.knot_values[c][k / 2]
         } else {
             g[c]
-        };
+        } + n.fine[c];
         let cv = prep.contrast * v;
         for i in 0..3 {
             rgb[i] += cv * prep.basis[c][i];

@@ -36,10 +36,10 @@
 
 use crate::error::{Error, Result};
 use crate::noise::oriented::noise2_periodic_oriented;
-use crate::noise::{Tile, band_fade, noise2_periodic};
+use crate::noise::{Tile, noise2_periodic};
 use crate::params::{MAX_BANDS, Params};
 use crate::render::pattern::{pattern_at, ramp};
-use crate::render::{Image, Prepared, colour};
+use crate::render::{ChannelNoise, Image, Prepared, band_sum, colour};
 
 /// The largest tile side (the WebGPU limit on a texture side, and 256 MiB as 8-bit RGBA): the
 /// render limit of [`crate::limits`], so that the app's PNG tiles and the CLI's renders stop at
@@ -150,28 +150,23 @@ pub fn plane(params: &Params) -> Params {
 
 /// The multiresolution noise of the three channels at tile position `a` (0..1 per axis).
 #[inline]
-pub fn texture_noise_wrapped(prep: &Prepared, tile: &Tile, s: &Seamless, a: [f32; 2]) -> [f32; 3] {
-    let mut sum = [0.0f32; 3];
-    for j in 0..prep.bands as usize {
-        let fade = band_fade(j as u32, s.log2_fp);
-        let w = [0, 1, 2].map(|c| prep.weights[c][j] * fade);
-        if w == [0.0; 3] {
-            continue;
-        }
+pub fn texture_noise_wrapped(
+    prep: &Prepared,
+    tile: &Tile,
+    s: &Seamless,
+    a: [f32; 2],
+) -> ChannelNoise {
+    band_sum(prep, s.log2_fp, |j| {
         let m = s.periods[j];
         let o = prep.offsets[j];
         let p = [a[0] * m + o[0], a[1] * m + o[1]];
         let mix = prep.orient[j];
-        let v = if mix[1] == 0.0 && mix[2] == 0.0 {
+        if mix[1] == 0.0 && mix[2] == 0.0 {
             noise2_periodic(&tile.data, tile.n, p, [m, m])
         } else {
             noise2_periodic_oriented(&tile.data, tile.n, p, [m, m], mix)
-        };
-        for c in 0..3 {
-            sum[c] += w[c] * v[c];
         }
-    }
-    sum
+    })
 }
 
 /// The colour of tile pixel (x, y), rendered in strips from `first_row` (GPU order of

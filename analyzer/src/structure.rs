@@ -185,7 +185,8 @@ fn gaussian_where_grown(noise: &mut NoiseModel, grow: [f64; 3]) {
 const MAX_RESIDUAL_GAIN: f64 = 100.0;
 
 /// The residual's amplitude times `gain` per decorrelated channel: its histogram's knots (kept
-/// in their valid range) when histogram matching is on, else its band weights.
+/// in their valid range) when histogram matching is on, else its band weights; and the finest
+/// band's part after the histogram.
 fn scale_residual(noise: &mut NoiseModel, gain: [f64; 3]) {
     for (c, &g) in gain.iter().enumerate() {
         let g = g.min(MAX_RESIDUAL_GAIN) as f32;
@@ -196,6 +197,7 @@ fn scale_residual(noise: &mut NoiseModel, gain: [f64; 3]) {
         } else {
             noise.weights[c].iter_mut().for_each(|v| *v *= g);
         }
+        noise.fine[c] = (noise.fine[c] * g).min(4.0);
     }
 }
 
@@ -208,7 +210,13 @@ pub fn fit_structured_with(
     swapped: bool,
     tile: &Tile,
 ) -> Analysis {
-    fit_structured_gains(photo, pattern, opts, swapped, tile).0
+    let mut a = fit_structured_gains(photo, pattern, opts, swapped, tile).0;
+    if opts.fine_gaussian
+        && let Model::Structured(m) = &mut a.params.model
+    {
+        m.residual.finest_band_gaussian();
+    }
+    a
 }
 
 /// The variances that [`fit_structured`]'s step 6 keeps in balance: a residual grown by `g`
@@ -361,8 +369,10 @@ fn fit_structured_gains(
             .collect(),
     };
     // The residual has no tone curve of its own (the structured model's applies last).
+    // Nor is its finest band split from its histogram yet: step 4 sets the band weights.
     let residual_opts = Options {
         tone: false,
+        fine_gaussian: false,
         ..*opts
     };
     let mut analysis = analyze_prepared(&residual, &residual_opts);

@@ -8,6 +8,7 @@ struct MorphKey {
     vec4 mean;          // mean RGB, contrast
     vec4 quat;          // the colour basis as a unit quaternion (w, x, y, z)
     vec4 pose;          // ln(scale), rotation (degrees), turn to the other end (degrees)
+    vec4 fine;          // the finest band's part after the histogram per channel, unused
     vec4 weights[12];   // [band] -> weight of channels 0, 1, 2
     vec4 orient[12];    // [band] -> asin(sqrt(strength)), streak angle (degrees), turn to the other end
     vec4 knots[33];     // [knot] -> inverse-CDF knot of channels 0, 1, 2 (segment's count)
@@ -186,6 +187,7 @@ Params morph(MorphSegment seg, float t) {
         energy += w * w;
     }
     p.sigma = sqrt(energy);
+    p.fine = max(a.fine + t * (b.fine - a.fine), vec4(0.0));
     p.offsets = MORPH_OFFSETS;
     float grad_var = seg.counts.z != 0u ? gradient_variance3() : gradient_variance2();
     for (int j = 0; j < MAX_BANDS; j++) {

@@ -11,6 +11,7 @@ struct Params {
     vec4 transform;         // 1/scale, cos(rotation), sin(rotation), unused
     uvec4 counts;           // bands, knots, solid (0/1), histogram (0/1)
     vec4 sigma;             // sigma_M per channel
+    vec4 fine;              // per channel the finest band's amplitude after the histogram
     vec4 weights[12];       // [band] -> weight of channels 0, 1, 2
     vec4 offsets[12];       // [band] -> offset (x, y, z) in coefficient units
     vec4 orient[12];        // [band] -> mixing of the band and its derivative (alpha, beta*dx, beta*dy)

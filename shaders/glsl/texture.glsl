@@ -11,12 +11,25 @@ vec3 texel(vec3 world) {
         world.z * inv_scale);
 }
 
-// The three channels' multiresolution noise: every band read once (one RGBA fetch per tap).
-vec3 texture_noise(vec3 u, float log2_fp) {
-    vec3 sum = vec3(0.0);
+// The three channels' noise at a point: the weighted sum of bands that the histogram maps,
+// and the finest band's part drawn after it (params.fine).
+struct ChannelNoise {
+    vec3 sum;
+    vec3 fine;
+};
+
+// The three channels' multiresolution noise: every band read once (one RGBA fetch per tap);
+// the finest band's part after the histogram apart.
+ChannelNoise texture_noise(vec3 u, float log2_fp) {
+    ChannelNoise n = ChannelNoise(vec3(0.0), vec3(0.0));
     for (uint j = 0u; j < params.counts.x; j++) {
-        vec3 w = params.weights[j].xyz * band_fade(j, log2_fp);
-        if (all(equal(w, vec3(0.0)))) {
+        float fade = band_fade(j, log2_fp);
+        vec3 w = params.weights[j].xyz * fade;
+        vec3 fw = vec3(0.0);
+        if (j == 0u) {
+            fw = params.fine.xyz * fade;
+        }
+        if (all(equal(w, vec3(0.0))) && all(equal(fw, vec3(0.0)))) {
             continue;
         }
         float f = 1.0 / float(1u << j);
@@ -39,9 +52,10 @@ vec3 texture_noise(vec3 u, float log2_fp) {
             v = wavelet_noise2_oriented(p, m);
         }
 #endif
-        sum += w * v;
+        n.sum += w * v;
+        n.fine += fw * v;
     }
-    return sum;
+    return n;
 }
 
 // The output tone curve of RGB channel c at v (either model): the Hermite spline through
@@ -55,10 +69,11 @@ float tone_eval(int c, float v) {
         params.tone_knots[i + 1u][c], params.tone_tangents[i + 1u][c]);
 }
 
-// The colour of the three channels' noise values g on the structured models' ramp colour base
-// (ignored by the noise model): histogram matching, contrast, back to RGB, then the model's
-// output tone curve.
-vec3 colour(vec3 g, vec3 base) {
+// The colour of the three channels' noise n on the structured models' ramp colour base
+// (ignored by the noise model): histogram matching of the bands' sum, the finest band's part
+// after it, contrast, back to RGB, then the model's output tone curve.
+vec3 colour(ChannelNoise n, vec3 base) {
+    vec3 g = n.sum;
     vec3 rgb = params.mean.xyz;
     if (params.pattern.x != 0u) {
         for (int i = 0; i < 3; i++) {
@@ -75,6 +90,7 @@ vec3 colour(vec3 g, vec3 base) {
         } else {
             v = g[c];
         }
+        v += n.fine[c];
         float cv = params.mean.w * v;
         rgb += cv * params.basis[c].xyz;
     }

@@ -73,7 +73,7 @@ fn seamless_uniform_matches_rust() {
 #[test]
 fn uniform_layout_matches_rust() {
     // weights, offsets and orient: one vec4 per band each.
-    const PATTERN_AT: u32 = 112 + 48 * MAX_BANDS as u32 + 32 * MAX_KNOTS as u32;
+    const PATTERN_AT: u32 = 128 + 48 * MAX_BANDS as u32 + 32 * MAX_KNOTS as u32;
     const RAMP_AT: u32 = PATTERN_AT + 32 + 16 * (MAX_VALUES as u32 / 4) + 16 * OCTAVES as u32;
     const TONE_AT: u32 = RAMP_AT + 16 * MAX_STOPS as u32;
     let src = proctex_shaders::plane_shader();
@@ -99,13 +99,14 @@ fn uniform_layout_matches_rust() {
         ("transform", 64),
         ("counts", 80),
         ("sigma", 96),
-        ("weights", 112),
-        ("offsets", 112 + 16 * MAX_BANDS as u32),
-        ("orient", 112 + 32 * MAX_BANDS as u32),
-        ("knots", 112 + 48 * MAX_BANDS as u32),
+        ("fine", 112),
+        ("weights", 128),
+        ("offsets", 128 + 16 * MAX_BANDS as u32),
+        ("orient", 128 + 32 * MAX_BANDS as u32),
+        ("knots", 128 + 48 * MAX_BANDS as u32),
         (
             "tangents",
-            112 + 48 * MAX_BANDS as u32 + 16 * MAX_KNOTS as u32,
+            128 + 48 * MAX_BANDS as u32 + 16 * MAX_KNOTS as u32,
         ),
         ("pattern", PATTERN_AT),
         ("pattern_transform", PATTERN_AT + 16),

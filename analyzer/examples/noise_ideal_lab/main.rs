@@ -66,7 +66,7 @@ use marginals::{MARGINAL_RUNGS, synthesise_marginals};
 use proctex::analyze::{Options, analyze_photo};
 use proctex::evaluate::random_phase;
 use proctex::input::Photo;
-use proctex::render::{Prepared, colour, texture_noise, tile_for};
+use proctex::render::{ChannelNoise, Prepared, colour, texture_noise, tile_for};
 use proctex::rng;
 use proctex::spectrum::{fft2_real, ifft2, spectrum_real};
 use realisation::{EXPECTED_RUNGS, ROUNDS_RUNGS, synthesise_expected, synthesise_rounds};
@@ -181,9 +181,11 @@ struct Model {
 fn model_of(src: &Photo, seed: u32) -> Model {
     // Lagae's model without the output tone curve: the ladders measure what comes before it
     // (the curve's own effect is measured in the product, `proctex fidelity --no-tone`).
+    // Lagae's model: every band through the histogram (the lab rank-matches their sum).
     let opts = Options {
         seed,
         tone: false,
+        fine_gaussian: false,
         ..Options::default()
     };
     let params = analyze_photo(src, &opts).expect("analysis").params;
@@ -490,7 +492,7 @@ fn model_noise(m: &Model, w: u32, h: u32) -> [Vec<f32>; 3] {
         for x in 0..w {
             let u = m.prep.texel([x as f32 + 0.5, y as f32 + 0.5, 0.0]);
             let g = texture_noise(&m.prep, &tile, u, log2_fp);
-            for (o, v) in out.iter_mut().zip(g) {
+            for (o, v) in out.iter_mut().zip(g.sum) {
                 o.push(v);
             }
         }
@@ -538,7 +540,7 @@ fn wide_deviation(m: &Model, c: usize) -> f64 {
             rng::uniform(7, 0x7769_6465, 2 * i + 1) as f32 * 16384.0,
             0.0,
         ];
-        let v = texture_noise(&m.prep, &tile, u, -1.0)[c] as f64;
+        let v = texture_noise(&m.prep, &tile, u, -1.0).sum[c] as f64;
         sum += v;
         sum2 += v * v;
     }
@@ -613,7 +615,15 @@ fn rgb_through_model(m: &Model, g: &[Vec<f32>; 3], w: u32, h: u32) -> Photo {
         height: h,
         pixels: (0..g[0].len())
             .map(|i| {
-                colour(&m.prep, [g[0][i], g[1][i], g[2][i]], m.prep.mean).map(|v| v.clamp(0.0, 1.0))
+                colour(
+                    &m.prep,
+                    ChannelNoise {
+                        sum: [g[0][i], g[1][i], g[2][i]],
+                        fine: [0.0; 3],
+                    },
+                    m.prep.mean,
+                )
+                .map(|v| v.clamp(0.0, 1.0))
             })
             .collect(),
     }

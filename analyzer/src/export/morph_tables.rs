@@ -234,6 +234,8 @@ struct MorphKey {
     mean: [f32; 4],
     quat: [f32; 4],
     pose: [f32; 4],
+    /// The finest band's part after the histogram per channel, unused.
+    fine: [f32; 4],
     weights: [[f32; 4]; MAX_BANDS],
     /// Per band: `asin √strength` (the phase `crate::morph::morph_strength` interpolates),
     /// streak angle (degrees), turn to the segment's other end (degrees, linear:
@@ -293,6 +295,7 @@ impl MorphTables {
                         ],
                         quat: q.map(|v| v as f32),
                         pose: [p.transform.scale.ln(), p.transform.rotation_deg, turn, 0.0],
+                        fine: [m.fine[0], m.fine[1], m.fine[2], 0.0],
                         weights: [[0.0; 4]; MAX_BANDS],
                         orient: [[0.0; 4]; MAX_BANDS],
                         knots: [[0.0; 4]; MAX_KNOTS],
@@ -342,10 +345,11 @@ impl MorphTables {
     pub(super) fn constants(&self, lang: Lang) -> String {
         let key = |k: &MorphKey| {
             format!(
-                "MorphKey(\n    {},\n    {},\n    {},\n    {},\n    {},\n    {}\n)",
+                "MorphKey(\n    {},\n    {},\n    {},\n    {},\n    {},\n    {},\n    {}\n)",
                 lang.vec4(k.mean),
                 lang.vec4(k.quat),
                 lang.vec4(k.pose),
+                lang.vec4(k.fine),
                 lang.array(k.weights.iter().copied(), MAX_BANDS),
                 lang.array(k.orient.iter().copied(), MAX_BANDS),
                 lang.array(k.knots.iter().copied(), MAX_KNOTS),

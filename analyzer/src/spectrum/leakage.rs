@@ -105,6 +105,7 @@ pub fn render_unit_band(size: usize, seed: u32, band: usize) -> Vec<f32> {
                 knots: [vec![0.0, 1.0], vec![0.0, 1.0], vec![0.0, 1.0]],
             },
             orientation: Vec::new(),
+            fine: [0.0; 3],
             tone: None,
         }),
         source: None,
@@ -114,7 +115,7 @@ pub fn render_unit_band(size: usize, seed: u32, band: usize) -> Vec<f32> {
     (0..size * size)
         .map(|k| {
             let (x, y) = ((k % size) as f32 + 0.5, (k / size) as f32 + 0.5);
-            texture_noise(&prep, &tile, prep.texel([x, y, 0.0]), 0.0)[0]
+            texture_noise(&prep, &tile, prep.texel([x, y, 0.0]), 0.0).sum[0]
         })
         .collect()
 }

@@ -304,6 +304,9 @@ impl FinalFit {
             gaussian_where_grown(&mut m.residual, grow);
             scale_residual(&mut m.residual, grow);
             balance.contract_ramp(&mut m.ramp, grow);
+            if self.opts.fine_gaussian {
+                m.residual.finest_band_gaussian();
+            }
         }
         // Scored with a tone curve fitted to the user's seed alone (the chosen candidate's
         // curve is fitted again on [`super::TONE_SEEDS`] renders by `finish`). The tone fit's

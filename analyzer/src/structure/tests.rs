@@ -229,12 +229,12 @@ fn a_grey_photos_fine_grain_grows_the_residual() {
         fit_structured(crate::db::Db::shipped(), &photo, &pat, &opts, false)
     );
     fitted.params.validate().unwrap();
-    // The residual's spread in its first channel (a grown channel is drawn Gaussian, so
-    // its outer knots are no measure of its amplitude).
+    // The residual's standard deviation in its first channel: its histogram's and the finest
+    // band's part after it.
     let spread = |a: &Analysis| match &a.params.model {
         Model::Structured(m) => {
-            let g = crate::histogram::gaussian_knots(&m.residual.histogram.knots[0]);
-            g[g.len() - 1] - g[0]
+            let h = crate::histogram::spline_sd(&m.residual.histogram.knots[0]);
+            (h * h + (m.residual.fine[0] as f64).powi(2)).sqrt()
         }
         Model::Noise(_) => panic!("structured"),
     };

@@ -71,6 +71,7 @@ pub fn noise_params(weights: [Vec<f32>; 3], basis: [[f32; 3]; 3], seed: u32) -> 
             },
             orientation: Vec::new(),
             tone: None,
+            fine: [0.0; 3],
         }),
         source: None,
     }

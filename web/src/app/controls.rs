@@ -179,6 +179,7 @@ impl ProctexApp {
             }
             let scale = params.transform.scale;
             for (c, weights) in model.weights.iter_mut().enumerate() {
+                let fine = &mut model.fine[c];
                 ui.separator();
                 ui.label(match c {
                     0 => "Channel 1 (principal axis) — band weights",
@@ -206,6 +207,21 @@ impl ProctexApp {
                         ));
                     rects.push((format!("weight.{c}.{j}"), r));
                 }
+                // The finest band's part drawn Gaussian after the histogram.
+                let max = fine.max(0.05) * 2.0;
+                let r = ui
+                    .add(egui::Slider::new(fine, 0.0..=max).text(format!(
+                        "1/{}–1/{} cyc/px, Gaussian",
+                        short(4.0 * scale),
+                        short(2.0 * scale)
+                    )))
+                    .on_hover_text(
+                        "the finest band drawn after the histogram matching, Gaussian (in \
+                         channel units): fine grain without the histogram's tails, which on \
+                         this band would be isolated bright or dark pixels; 0: the finest band \
+                         only through its weight above",
+                    );
+                rects.push((format!("fine.{c}"), r));
             }
             orientation_controls(ui, model, scale, &mut rects);
         });

@@ -125,7 +125,11 @@ fn summary(p: &Params, ms: f64) -> String {
     }
     for c in 0..3 {
         let w: Vec<String> = n.weights[c].iter().map(|v| format!("{v:.4}")).collect();
-        s += &format!("  channel {c} weights: {}\n", w.join(" "));
+        s += &format!("  channel {c} weights: {}", w.join(" "));
+        if n.fine[c] > 0.0 {
+            s += &format!(", finest band after the histogram {:.4}", n.fine[c]);
+        }
+        s += "\n";
     }
     s += &format!(
         "period: {} texels ({} world units)",
