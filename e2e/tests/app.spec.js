@@ -100,19 +100,22 @@ test('GPU view equals the CPU reference renderer for every pattern family', asyn
   fs.rmSync(dir, { recursive: true, force: true });
 });
 
-test('dragging the finest band weight raises and removes high-frequency energy', async ({ page }) => {
+test('dragging the finest band raises and removes high-frequency energy', async ({ page }) => {
   await openApp(page);
   const before = await state(page);
   const square = innerSquare(before.widgets.texture, 256);
   const energy0 = highFrequencyEnergy(await grab(page, square));
-  const [x, y, w, h] = await reveal(page, 'weight.0.0');
+  // The analysis draws the finest band after the histogram (its weight in the sum is 0): its
+  // slider is the first channel's Gaussian part.
+  const [x, y, w, h] = await reveal(page, 'fine.0');
   // The slider's rail is the left part of the widget (the value box and label follow it).
   const railLeft = x + 2, railRight = x + 100 - 2, cy = y + h / 2;
   const knob = async () => {
     const p = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
-    return p.model.weights[0][0];
+    return (p.model.fine || [0, 0, 0])[0];
   };
   const w0 = await knob();
+  expect(w0).toBeGreaterThan(0);
   await page.mouse.move(railLeft + 20, cy);
   await page.mouse.down();
   await page.mouse.move(railRight, cy, { steps: 8 });

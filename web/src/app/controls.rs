@@ -208,7 +208,9 @@ impl ProctexApp {
                     rects.push((format!("weight.{c}.{j}"), r));
                 }
                 // The finest band's part drawn Gaussian after the histogram.
-                let max = fine.max(0.05) * 2.0;
+                // Up to four times the analysed part (a band's power sixteen times), within
+                // the valid range.
+                let max = (fine.max(0.05) * 4.0).min(4.0);
                 let r = ui
                     .add(egui::Slider::new(fine, 0.0..=max).text(format!(
                         "1/{}–1/{} cyc/px, Gaussian",
