@@ -267,8 +267,8 @@ pub struct NoiseModel {
     /// histogram on its own: a histogram on the sum of all bands puts its tails on the finest
     /// band as often as on coarse ones, and a tail value on a pixel-scale band is an isolated
     /// outlier pixel (a speck), while a photo's tails are coarse (dark spots, edges). So
-    /// analysis draws the finest band Gaussian at the histogram's mean slope and leaves the
-    /// tails to the coarser bands ([`NoiseModel::finest_band_gaussian`]). Measured on the
+    /// analysis draws the finest band Gaussian with its share of the channel's variance and
+    /// leaves the tails to the coarser bands ([`NoiseModel::finest_band_gaussian`]). Measured on the
     /// development set (every quadrant, seed 1): renders within 1.5× of their photo's specks
     /// 170 → 180 of 208 (the noise model's 115 → 121 of 124), auto's fidelity paired
     /// −0.004 ± 0.003 structured, −0.003 ± 0.005 stochastic (docs/devset.md).

@@ -7,8 +7,9 @@
 //! per-pixel function; its WGSL twin is `shade` in `shaders/`.
 //!
 //! Synthesis (Lagae §7): per decorrelated channel evaluate `Σ_j w_j·fade_j·N(u·2^−j + o_j)`,
-//! map through the inverse CDF spline (see [`crate::histogram`]) when the histogram is on, rotate back to
-//! RGB and add the mean.
+//! map through the inverse CDF spline (see [`crate::histogram`]) when the histogram is on, add the
+//! finest band's part drawn after it ([`crate::params::NoiseModel::fine`]), rotate back to RGB and
+//! add the mean.
 
 use crate::histogram::{fc_tangents, knot_coordinate, spline_eval};
 use crate::noise::oriented::{
