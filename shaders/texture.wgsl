@@ -1,5 +1,5 @@
 // The procedural texture at a point. Twins: analyzer/src/render.rs (Prepared::texel,
-// texture_noise, colour, tone_eval, shade).
+// texture_noise, colour, tone_excursion, tone_eval, shade).
 
 fn texel(world: vec3<f32>) -> vec3<f32> {
     let c = params.transform.y;
@@ -61,7 +61,8 @@ fn texture_noise(u: vec3<f32>, log2_fp: f32) -> ChannelNoise {
 
 // The colour of the three channels' noise n on the structured models' ramp colour base
 // (ignored by the noise model): histogram matching of the bands' sum, the finest band's part
-// after it, contrast, back to RGB, then the model's output tone curve.
+// after it, contrast, back to RGB, then the model's output tone curve. A structured model's
+// curve maps the ramp's colour, and the residual follows it (tone_excursion).
 fn colour(n: ChannelNoise, base: vec3<f32>) -> vec3<f32> {
     let g = n.sum;
     var rgb = params.mean.xyz;
@@ -71,6 +72,8 @@ fn colour(n: ChannelNoise, base: vec3<f32>) -> vec3<f32> {
         }
     }
     let k = params.counts.y;
+    let residual_after_tone = params.pattern.x != 0u && params.pattern.w >= 2u;
+    var residual = vec3<f32>(0.0);
     for (var c = 0u; c < 3u; c++) {
         var v: f32;
         if (params.counts.w != 0u && params.sigma[c] > 0.0) {
@@ -80,16 +83,37 @@ fn colour(n: ChannelNoise, base: vec3<f32>) -> vec3<f32> {
         } else {
             v = g[c];
         }
-        v += n.fine[c];
-        let cv = params.mean.w * v;
-        rgb += cv * params.basis[c].xyz;
+        if (residual_after_tone) {
+            let cv = params.mean.w * v;
+            let cf = params.mean.w * n.fine[c];
+            residual += (cv + cf) * params.basis[c].xyz;
+        } else {
+            let cv = params.mean.w * (v + n.fine[c]);
+            rgb += cv * params.basis[c].xyz;
+        }
     }
     if (params.pattern.w >= 2u) {
         for (var c = 0u; c < 3u; c++) {
-            rgb[c] = tone_eval(c, rgb[c]);
+            let t = tone_eval(c, rgb[c]);
+            if (residual[c] != 0.0) {
+                rgb[c] = t + tone_excursion(tone_eval(c, rgb[c] + residual[c]) - t, residual[c]);
+            } else {
+                rgb[c] = t;
+            }
         }
     }
     return rgb;
+}
+
+// What a structured model's output tone curve makes of the residual on the ramp's colour (one
+// RGB channel): the residual through the curve where the curve compresses it, the residual
+// itself where the curve would stretch it (a pixel-scale excursion through a steep stretch is
+// a speck).
+fn tone_excursion(through: f32, residual: f32) -> f32 {
+    if (abs(through) > abs(residual)) {
+        return residual;
+    }
+    return through;
 }
 
 // The output tone curve of RGB channel c at v (either model): the Hermite spline through

@@ -45,12 +45,16 @@ fn main() {
     );
     println!(
         "no residual            {:.4}",
-        variant(&|m| m.residual.weights.iter_mut().for_each(|w| w.fill(0.0)))
+        variant(&|m| {
+            m.residual.weights.iter_mut().for_each(|w| w.fill(0.0));
+            m.residual.fine = [0.0; 3];
+        })
     );
     println!(
         "ramp alone (no residual, no tone) {:.4}",
         variant(&|m| {
             m.residual.weights.iter_mut().for_each(|w| w.fill(0.0));
+            m.residual.fine = [0.0; 3];
             m.tone = None;
         })
     );
@@ -59,6 +63,7 @@ fn main() {
         let mut p = full.clone();
         if let Model::Structured(m) = &mut p.model {
             m.residual.weights.iter_mut().for_each(|w| w.fill(0.0));
+            m.residual.fine = [0.0; 3];
             m.tone = None;
         }
         let a = render_params_at_photo_size(&p, &patch);

@@ -106,7 +106,10 @@ pub struct StructuredModel {
 
 /// An output tone curve per RGB channel, applied last (after ramp, residual and contrast):
 /// `rgb_c ← spline_c((rgb_c − lo_c) / (hi_c − lo_c))`, a monotone Fritsch–Carlson spline
-/// through knots at evenly spaced inputs, clamped to its end knots outside `[lo, hi]`.
+/// through knots at evenly spaced inputs, clamped to its end knots outside `[lo, hi]`. A
+/// structured model's curve maps the ramp's colour and the residual follows it: through the
+/// curve where the curve compresses it, never larger than itself
+/// ([`crate::render::tone_excursion`]).
 ///
 /// Departure from the 2014 paper (two tones) and past our ramp + residual: the ramp is fitted
 /// by least squares and the residual is Gaussian-ish noise, so their sum has the right mean

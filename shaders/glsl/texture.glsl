@@ -1,5 +1,5 @@
 // The procedural texture at a point (GLSL twin of shaders/texture.wgsl; Rust twins in
-// analyzer/src/render.rs: Prepared::texel, texture_noise, colour, tone_eval, shade).
+// analyzer/src/render.rs: Prepared::texel, texture_noise, colour, tone_excursion, tone_eval, shade).
 
 vec3 texel(vec3 world) {
     float c = params.transform.y;
@@ -69,9 +69,21 @@ float tone_eval(int c, float v) {
         params.tone_knots[i + 1u][c], params.tone_tangents[i + 1u][c]);
 }
 
+// What a structured model's output tone curve makes of the residual on the ramp's colour (one
+// RGB channel): the residual through the curve where the curve compresses it, the residual
+// itself where the curve would stretch it (a pixel-scale excursion through a steep stretch is
+// a speck).
+float tone_excursion(float through, float residual) {
+    if (abs(through) > abs(residual)) {
+        return residual;
+    }
+    return through;
+}
+
 // The colour of the three channels' noise n on the structured models' ramp colour base
 // (ignored by the noise model): histogram matching of the bands' sum, the finest band's part
-// after it, contrast, back to RGB, then the model's output tone curve.
+// after it, contrast, back to RGB, then the model's output tone curve. A structured model's
+// curve maps the ramp's colour, and the residual follows it (tone_excursion).
 vec3 colour(ChannelNoise n, vec3 base) {
     vec3 g = n.sum;
     vec3 rgb = params.mean.xyz;
@@ -81,6 +93,8 @@ vec3 colour(ChannelNoise n, vec3 base) {
         }
     }
     uint k = params.counts.y;
+    bool residual_after_tone = params.pattern.x != 0u && params.pattern.w >= 2u;
+    vec3 residual = vec3(0.0);
     for (int c = 0; c < 3; c++) {
         float v;
         if (params.counts.w != 0u && params.sigma[c] > 0.0) {
@@ -90,13 +104,23 @@ vec3 colour(ChannelNoise n, vec3 base) {
         } else {
             v = g[c];
         }
-        v += n.fine[c];
-        float cv = params.mean.w * v;
-        rgb += cv * params.basis[c].xyz;
+        if (residual_after_tone) {
+            float cv = params.mean.w * v;
+            float cf = params.mean.w * n.fine[c];
+            residual += (cv + cf) * params.basis[c].xyz;
+        } else {
+            float cv = params.mean.w * (v + n.fine[c]);
+            rgb += cv * params.basis[c].xyz;
+        }
     }
     if (params.pattern.w >= 2u) {
         for (int c = 0; c < 3; c++) {
-            rgb[c] = tone_eval(c, rgb[c]);
+            float t = tone_eval(c, rgb[c]);
+            if (residual[c] != 0.0) {
+                rgb[c] = t + tone_excursion(tone_eval(c, rgb[c] + residual[c]) - t, residual[c]);
+            } else {
+                rgb[c] = t;
+            }
         }
     }
     return rgb;

@@ -3,9 +3,7 @@
 //! ([`FinalFit`]) that give the same result wherever and in whatever order they run: on
 //! native they run in parallel here, in the browser on the analysis worker and its helpers.
 
-use super::tone::{
-    fit_tone_rendered, render_seed, tone_applies, tone_of_renders, with_tone_applied,
-};
+use super::tone::{fit_tone_rendered, render_seed, tone_applies, tone_of_renders};
 use super::{
     Balance, RESIDUAL_GAIN_STRENGTHS, SELECTION_TONE_SEEDS, TONE_SEEDS, fit_structured_gains,
     fit_tone, gaussian_where_grown, predicted_ratio, rougher_variants, scale_residual,
@@ -276,7 +274,7 @@ impl FinalFit {
         let tone = if renders.is_empty() {
             None
         } else {
-            tone_of_renders(&self.photo, renders).0
+            tone_of_renders(&self.photo, renders)
         };
         if let Model::Structured(m) = &mut best.params.model {
             m.tone = tone;
@@ -309,26 +307,23 @@ impl FinalFit {
             }
         }
         // Scored with a tone curve fitted to the user's seed alone (the chosen candidate's
-        // curve is fitted again on [`super::TONE_SEEDS`] renders by `finish`). The tone fit's
-        // render of that seed is the scored image before its curve (the curve is applied per
-        // pixel, last): mapped here instead of rendered again, bit for bit the same image
-        // (tested).
+        // curve is fitted again on [`super::TONE_SEEDS`] renders by `finish`), coloured again
+        // from the fields: the residual follows the curve
+        // ([`crate::render::tone_excursion`]), so the curve does not map the fit's render
+        // pixel by pixel.
         let untoned = a.clone();
-        let (tone, shown) = fit_tone_rendered(photo, &a.params, SELECTION_TONE_SEEDS, Some(fields));
+        let tone = fit_tone_rendered(photo, &a.params, SELECTION_TONE_SEEDS, Some(fields));
         if let Model::Structured(m) = &mut a.params.model {
             m.tone = tone;
         }
-        let img = match shown {
-            Some(pixels) => with_tone_applied(&a.params, photo.width, photo.height, pixels),
-            None => render_with_fields(
-                &a.params,
-                photo.width,
-                photo.height,
-                &View::default(),
-                fields,
-            )
-            .to_photo(),
-        };
+        let img = render_with_fields(
+            &a.params,
+            photo.width,
+            photo.height,
+            &View::default(),
+            fields,
+        )
+        .to_photo();
         let d = s.reference.distances(db, &img);
         let unit = &s.unit;
         let score = predicted_ratio(d.spectrum_db, unit.spectrum_db.max(0.1))

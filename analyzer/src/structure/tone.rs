@@ -3,7 +3,7 @@
 
 use crate::input::Photo;
 use crate::params::{Model, Params};
-use crate::render::{Fields, Prepared};
+use crate::render::Fields;
 
 /// Knots per channel of a fitted output tone curve.
 pub const TONE_KNOTS: usize = 33;
@@ -37,26 +37,24 @@ const TONE_STRENGTHS: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 /// ramp fits that seed's render 4× closer to the photo than other seeds' (old wood: colour
 /// distance 0.006 against 0.024–0.030), so the others pull the curve their way.
 pub fn fit_tone(photo: &Photo, params: &Params) -> Option<crate::params::Tone> {
-    fit_tone_rendered(photo, params, TONE_SEEDS, None).0
+    fit_tone_rendered(photo, params, TONE_SEEDS, None)
 }
 
-/// [`fit_tone`] with the renders of `seeds` seeds pooled, and the render of `params.seed` it
-/// made (without a curve; `None` where it rendered nothing). Renders that `fields` fit are
+/// [`fit_tone`] with the renders of `seeds` seeds pooled. Renders that `fields` fit are
 /// coloured from them.
 pub(super) fn fit_tone_rendered(
     photo: &Photo,
     params: &Params,
     seeds: u32,
     fields: Option<&Fields>,
-) -> (Option<crate::params::Tone>, Option<Vec<[f32; 3]>>) {
+) -> Option<crate::params::Tone> {
     if !tone_applies(photo, params) {
-        return (None, None);
+        return None;
     }
     let renders: Vec<Vec<[f32; 3]>> = (0..seeds.max(1))
         .map(|k| render_seed(photo, params, k, fields))
         .collect();
-    let (tone, shown) = tone_of_renders(photo, renders);
-    (tone, Some(shown))
+    tone_of_renders(photo, renders)
 }
 
 /// Whether [`fit_tone`] fits a curve at all: a structured model on a photo of 64 pixels or more.
@@ -85,11 +83,14 @@ pub(super) fn render_seed(
 }
 
 /// Steps 1–2 of [`fit_tone`] on its renders (the first is the user's seed's; at least one):
-/// the curve at its chosen strength, and that first render.
+/// the curve at its chosen strength. The curve is fitted on the whole colour and its strength
+/// chosen on the first render mapped through it pixel by pixel, though the renderer applies it
+/// to the ramp's colour and lets the residual follow ([`crate::render::tone_excursion`]): the
+/// two differ only where the curve would stretch the residual.
 pub(super) fn tone_of_renders(
     photo: &Photo,
-    mut renders: Vec<Vec<[f32; 3]>>,
-) -> (Option<crate::params::Tone>, Vec<[f32; 3]>) {
+    renders: Vec<Vec<[f32; 3]>>,
+) -> Option<crate::params::Tone> {
     use crate::distance::ColourQuantiles;
     let n = photo.pixels.len();
     let sorted_photo = crate::noise_tone::sorted_channels(photo);
@@ -126,40 +127,7 @@ pub(super) fn tone_of_renders(
         .min_by(|&a, &b| loss[a].total_cmp(&loss[b]))
         .unwrap_or(0);
     let lambda = TONE_STRENGTHS[best];
-    (
-        (lambda > 0.0).then(|| tone_strength(&tone, lambda)),
-        renders.swap_remove(0),
-    )
-}
-
-/// The photo that [`crate::render::render`] gives for structured `params` (at the default
-/// view, clamped), from its render without the tone curve: the curve applied per pixel, as the
-/// renderer's last step does ([`crate::render::colour`]).
-pub(super) fn with_tone_applied(
-    params: &Params,
-    width: u32,
-    height: u32,
-    pixels: Vec<[f32; 3]>,
-) -> Photo {
-    let prep = Prepared::new(params);
-    let curved = prep.pattern[3] >= 2;
-    Photo {
-        width,
-        height,
-        pixels: pixels
-            .into_iter()
-            .map(|p| {
-                std::array::from_fn(|c| {
-                    let v = if curved {
-                        crate::render::tone_eval(&prep, c, p[c])
-                    } else {
-                        p[c]
-                    };
-                    v.clamp(0.0, 1.0)
-                })
-            })
-            .collect(),
-    }
+    (lambda > 0.0).then(|| tone_strength(&tone, lambda))
 }
 
 /// `tone` turned down to strength `lambda`: `identity + λ·(tone − identity)` at its knots.
