@@ -8,11 +8,11 @@ use proctex::noise::Tile;
 use proctex::params::pattern_shell;
 use proctex::pattern::{Pattern, PatternKind, ValueSpec};
 use proctex::render::Prepared;
-use proctex::render::pattern::{WARP_OFFSET, octaves};
+use proctex::render::pattern::cells_warp_field;
 
 /// The displacement's gradient (∂gx/∂x, ∂gx/∂y, ∂gy/∂x, ∂gy/∂y, per unit of warp, in cells)
-/// at 40 000 points of the plane, read as `render::pattern` reads it for cells (every octave
-/// unfaded: cells of 64 pixels).
+/// at 40 000 points of the plane, the renderer's own field (every octave unfaded: cells of 64
+/// pixels).
 fn warp_gradients() -> Vec<[f32; 4]> {
     let tile = Tile::new_2d(1);
     let prep = Prepared::new(&pattern_shell(
@@ -20,14 +20,7 @@ fn warp_gradients() -> Vec<[f32; 4]> {
         1,
         false,
     ));
-    let lfp = -6.0f32;
-    let field = |p: [f32; 2]| {
-        let b = [0.25 * p[0], 0.25 * p[1], 0.0];
-        let gx = octaves(&prep, &tile, b, 0.5, 0, 0.0, lfp - 2.0, [0.0, 0.0]);
-        let b2 = [b[0] + WARP_OFFSET, b[1], b[2]];
-        let gy = octaves(&prep, &tile, b2, 0.5, 0, 0.0, lfp - 2.0, [0.0, 0.0]);
-        [gx, gy]
-    };
+    let field = |p: [f32; 2]| cells_warp_field(&prep, &tile, p, 0.0, -6.0, [0.0, 0.0]);
     let h = 0.01f32;
     let mut out = Vec::with_capacity(40_000);
     for i in 0..200 {

@@ -155,6 +155,26 @@ pub fn octaves(
     }
 }
 
+/// The two fractal noises (octaves of 4 cells and finer, the second read [`WARP_OFFSET`] noise
+/// units away) that displace cells' lattice point `p` (in cells; `z` the solid texture's
+/// depth), per unit of `warp`; `per` the lattice's period in noise units (see [`octave`]). The
+/// WGSL and GLSL twins write it out inside `pattern_at`.
+#[inline]
+pub fn cells_warp_field(
+    prep: &Prepared,
+    tile: &Tile,
+    p: [f32; 2],
+    z: f32,
+    lfp: f32,
+    per: [f32; 2],
+) -> [f32; 2] {
+    let b = [0.25 * p[0], 0.25 * p[1], 0.25 * z];
+    let gx = octaves(prep, tile, b, 0.5, 0, 0.0, lfp - 2.0, per);
+    let b2 = [b[0] + WARP_OFFSET, b[1], b[2]];
+    let gy = octaves(prep, tile, b2, 0.5, 0, 0.0, lfp - 2.0, per);
+    [gx, gy]
+}
+
 /// Distance to the nearest joint of the unit cell that `x` (in cells) and `y` fall in, in
 /// units of the cell's height (`aspect`: cell width / height).
 #[inline]
@@ -256,10 +276,7 @@ pub fn pattern_at(prep: &Prepared, tile: &Tile, q: [f32; 3], lfp: f32, wrap: [f3
                 // Bent rows: the lattice displaced by `warp` × two fractal noises (octaves of
                 // 4 cells and finer), the second read `WARP_OFFSET` noise units away.
                 let per = [0.25 * wrap[0] / w[4], 0.25 * wrap[1]];
-                let b = [0.25 * p[0], 0.25 * p[1], 0.25 * q[2]];
-                let gx = octaves(prep, tile, b, 0.5, 0, 0.0, lfp - 2.0, per);
-                let b2 = [b[0] + WARP_OFFSET, b[1], b[2]];
-                let gy = octaves(prep, tile, b2, 0.5, 0, 0.0, lfp - 2.0, per);
+                let [gx, gy] = cells_warp_field(prep, tile, p, q[2], lfp, per);
                 p = [p[0] + w[6] * gx, p[1] + w[6] * gy];
             }
             let iy = p[1].floor();
