@@ -19,6 +19,9 @@
 //!   within-class variance instead of their mean (the same as standardising the features);
 //!   `CORPUS_LAB_NO_LINES=1` zeroes the two straight-line cues (the cues' costliest).
 //!   `CORPUS_LAB_AUG=half` also trains on each texture's quadrants at half its size.
+//!   `CORPUS_LAB_DEV_FOLDS=K` scores each development photo with a discriminant trained on the
+//!   corpus and on the development photos of the other K − 1 folds by photo (their manifest's
+//!   first family as the label): what the development photos would add as training textures.
 //! - `corpus_lab table LABELS DIR OUT`: the same discriminant (setting chosen on the corpus),
 //!   trained on every labelled texture and written as the product's table
 //!   (`analyzer/src/family_classifier_table.rs`, read by `proctex::family_classifier`); it
@@ -176,6 +179,33 @@ fn load_corpus(labels: &str, dir: &str, names: &[&str]) -> Vec<Texture> {
             quadrants,
             extra: augmented(&photo),
         });
+    }
+    out
+}
+
+/// The development set's photos as training textures (`CORPUS_LAB_DEV_FOLDS`, `CORPUS_LAB_DEV`):
+/// each photo's four quadrants, its class the manifest's first family (`noise` for a stochastic
+/// photo), as `tools/corpus/CONVENTIONS.md` labels the corpus.
+fn dev_textures(dev: &[(lab_common::Patch, Descriptor)], names: &[&str]) -> Vec<Texture> {
+    let mut out: Vec<Texture> = Vec::new();
+    for (p, d) in dev {
+        let label = if p.structured {
+            p.labels.first().map_or("noise", String::as_str)
+        } else {
+            "noise"
+        };
+        let Some(class) = names.iter().position(|n| *n == label) else {
+            continue;
+        };
+        match out.iter_mut().find(|t| t.file == p.file) {
+            Some(t) => t.quadrants.push(d.clone()),
+            None => out.push(Texture {
+                file: p.file.clone(),
+                class,
+                quadrants: vec![d.clone()],
+                extra: Vec::new(),
+            }),
+        }
     }
     out
 }
@@ -467,8 +497,31 @@ fn eval(labels: &str, dir: &str, dev: &str) {
     }
     let all: Vec<&Texture> = corpus.iter().collect();
     let c = Classifier::train(&all, names.len(), harmonics, ridge);
+    // With `CORPUS_LAB_DEV_FOLDS=K`, each development photo is scored by a discriminant trained
+    // on the corpus and the development photos of the other K − 1 folds (by photo).
+    let dev_folds: usize = std::env::var("CORPUS_LAB_DEV_FOLDS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0);
+    let dev_train = dev_textures(&dev_patches, &names);
+    let fold_classifiers: Vec<Classifier> = (0..dev_folds)
+        .map(|f| {
+            let mut train: Vec<&Texture> = corpus.iter().collect();
+            train.extend(
+                dev_train
+                    .iter()
+                    .filter(|t| proctex::devset::fold_of(&t.file, dev_folds) != f),
+            );
+            Classifier::train(&train, names.len(), harmonics, ridge)
+        })
+        .collect();
     let (mut first, mut top3, mut family, mut ns, mut served, mut nt) = (0, 0, 0, 0, 0, 0);
     for (p, d) in &dev_patches {
+        let c = if dev_folds > 0 {
+            &fold_classifiers[proctex::devset::fold_of(&p.file, dev_folds)]
+        } else {
+            &c
+        };
         let order = c.order(d);
         let name = |k: usize| names[k];
         let labelled = |k: usize| p.labels.iter().any(|l| l == name(k));
@@ -490,7 +543,12 @@ fn eval(labels: &str, dir: &str, dev: &str) {
         }
     }
     println!(
-        "development set (never trained on), harmonics {harmonics} ridge {ridge} (chosen on the corpus): structured first {first}/{ns}, top three {top3}/{ns}, nearest family labelled {family}/{ns}; stochastic → noise {served}/{nt}"
+        "development set ({}), harmonics {harmonics} ridge {ridge} (chosen on the corpus): structured first {first}/{ns}, top three {top3}/{ns}, nearest family labelled {family}/{ns}; stochastic → noise {served}/{nt}",
+        if dev_folds > 0 {
+            format!("{dev_folds} folds by photo held out, the others trained on")
+        } else {
+            "never trained on".to_string()
+        }
     );
     if let Some(other) = std::env::var_os("CORPUS_LAB_ALSO") {
         // Unlabelled photos (the shipped samples): each quadrant's nearest class and family.
