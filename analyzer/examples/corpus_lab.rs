@@ -183,7 +183,7 @@ fn load_corpus(labels: &str, dir: &str, names: &[&str]) -> Vec<Texture> {
     out
 }
 
-/// The development set's photos as training textures (`CORPUS_LAB_DEV_FOLDS`, `CORPUS_LAB_DEV`):
+/// The development set's photos as training textures (`CORPUS_LAB_DEV_FOLDS`):
 /// each photo's four quadrants, its class the manifest's first family (`noise` for a stochastic
 /// photo), as `tools/corpus/CONVENTIONS.md` labels the corpus.
 fn dev_textures(dev: &[(lab_common::Patch, Descriptor)], names: &[&str]) -> Vec<Texture> {
@@ -503,7 +503,11 @@ fn eval(labels: &str, dir: &str, dev: &str) {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(0);
-    let dev_train = dev_textures(&dev_patches, &names);
+    let dev_train = if dev_folds > 0 {
+        dev_textures(&dev_patches, &names)
+    } else {
+        Vec::new()
+    };
     let fold_classifiers: Vec<Classifier> = (0..dev_folds)
         .map(|f| {
             let mut train: Vec<&Texture> = corpus.iter().collect();
