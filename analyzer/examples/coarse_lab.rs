@@ -1,51 +1,37 @@
 //! Laboratory: a family's best database start at several scales, each refined and fitted as the
 //! ranking does; prints the structure and texture distances (and the noise model's).
 //! `cargo run --release -p proctex-analyzer --example coarse_lab -- PHOTO QX QY FAMILY`
-// Only `quadrants` of the shared laboratory code.
+// Only `ranked_quadrant` of the shared laboratory code.
 #[allow(dead_code)]
 mod lab_common;
 
 use proctex::analyze::{Options, analyze_prepared};
-use proctex::db::{Db, query};
-use proctex::input::Photo;
+use proctex::db::Db;
 use proctex::noise::Tile;
 use proctex::pattern::PatternKind;
 use proctex::refine::refine;
-use proctex::retrieve::{RANK_SIZE, texture_distance};
+use proctex::retrieve::texture_distance;
 use proctex::structure::fit_structured_with;
-use proctex::two_tone::{network_phase, two_tone};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let photo = Photo::decode(&std::fs::read(&args[1]).unwrap()).unwrap();
     let q = |i: usize| args[i].parse::<u32>().unwrap();
-    // TL, TR, BL, BR, as the development set's patches are cut.
-    let patch = lab_common::quadrants(&photo).swap_remove((q(3) * 2 + q(2)) as usize);
     let kind = PatternKind::from_name(&args[4]).expect("family");
     let factors: Vec<f32> = std::env::var("FACTORS")
         .unwrap_or("1,1.5,2,3,4".into())
         .split(',')
         .map(|s| s.parse().unwrap())
         .collect();
-    let small = patch.reduced(RANK_SIZE).unwrap_or(patch.clone());
-    let tt = two_tone(&small);
-    let (sw, sh) = (small.width as usize, small.height as usize);
-    let (qd, per_px) = query(&tt.structure, sw, sh);
+    let rq = lab_common::ranked::ranked_quadrant(&args[1], q(2), q(3), kind);
+    let (small, tt, qd, per_px, m) = (&rq.small, &rq.tt, &rq.query, rq.per_px, &rq.start);
     let db = Db::shipped();
-    let net = network_phase(&tt.structure, sw, sh);
-    let pools = db.top_per_kind_paired(&qd, 8, net);
-    let pool = pools
-        .iter()
-        .find(|v| !v.is_empty() && v[0].pattern.kind == kind)
-        .unwrap();
-    let m = &pool[0];
     let tile = Tile::new_2d(1);
     let dbtile = Tile::new_2d(proctex::db::DB_SEED);
     let opts = Options::default();
-    let noise = analyze_prepared(&small, &opts).params;
+    let noise = analyze_prepared(small, &opts).params;
     println!(
         "noise texture {:.3}",
-        texture_distance(db, &tt, &qd, &noise, &tile)
+        texture_distance(db, tt, qd, &noise, &tile)
     );
     let qm = if m.swapped { qd.swapped() } else { qd.clone() };
     let evals: usize = std::env::var("EVALS").map_or(40, |s| s.parse().unwrap());
@@ -55,8 +41,8 @@ fn main() {
         let r = refine(db, &qm, &start, evals, &dbtile, &mut |_, _| true);
         let mut p = r.pattern.clone();
         p.scale *= per_px;
-        let fitted = fit_structured_with(&small, &p, &opts, m.swapped, &tile).params;
-        let t = texture_distance(db, &tt, &qd, &fitted, &tile);
+        let fitted = fit_structured_with(small, &p, &opts, m.swapped, &tile).params;
+        let t = texture_distance(db, tt, qd, &fitted, &tile);
         println!(
             "x{f:<4} start scale {:6.1} d {:.3} -> refined scale {:6.1} d {:.3}  texture {:.3}  {:?}",
             start.scale,
@@ -67,7 +53,7 @@ fn main() {
             r.pattern.vector()
         );
         if let Ok(dir) = std::env::var("OUT") {
-            let img = proctex::evaluate::render_params_at_photo_size(&fitted, &small);
+            let img = proctex::evaluate::render_params_at_photo_size(&fitted, small);
             let path = format!("{dir}/{}_{}.png", args[4], f);
             let mut out = image::RgbImage::new(small.width, small.height);
             for (i, c) in img.pixels.iter().enumerate() {

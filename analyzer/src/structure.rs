@@ -219,6 +219,44 @@ pub fn fit_structured_with(
     a
 }
 
+/// [`fit_structured_with`] with step 6's residual amplitude `g^alpha` applied
+/// ([`grow_residual`]), without the output tone curve: one candidate of step 6 as the ranking
+/// would see it (for laboratories that compare the ranking's fits across amplitudes).
+pub fn fit_structured_grown(
+    photo: &Photo,
+    pattern: &Pattern,
+    opts: &Options,
+    swapped: bool,
+    tile: &Tile,
+    alpha: f64,
+) -> Analysis {
+    let (mut a, gains, balance) = fit_structured_gains(photo, pattern, opts, swapped, tile);
+    if let Model::Structured(m) = &mut a.params.model {
+        grow_residual(m, gains, &balance, alpha, opts.fine_gaussian);
+    }
+    a
+}
+
+/// Step 6's residual amplitude `alpha` applied to a fitted model: the residual grown by
+/// `g^alpha` per channel (`gains`: [`compensate_spectrum`]'s `g`), drawn Gaussian where it grows,
+/// the ramp contracted by as much variance ([`Balance::contract_ramp`]), and the finest band
+/// drawn Gaussian when `fine_gaussian`.
+fn grow_residual(
+    m: &mut StructuredModel,
+    gains: [f64; 3],
+    balance: &Balance,
+    alpha: f64,
+    fine_gaussian: bool,
+) {
+    let grow = gains.map(|g| g.max(1.0).powf(alpha));
+    gaussian_where_grown(&mut m.residual, grow);
+    scale_residual(&mut m.residual, grow);
+    balance.contract_ramp(&mut m.ramp, grow);
+    if fine_gaussian {
+        m.residual.finest_band_gaussian();
+    }
+}
+
 /// The variances that [`fit_structured`]'s step 6 keeps in balance: a residual grown by `g`
 /// adds variance that the rank pairing had given to the ramp, so the ramp gives it back.
 #[derive(Clone, Copy, Debug)]

@@ -1,5 +1,6 @@
-//! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`, `corpus_lab`): the
-//! quadrant patches of the labelled photos, and the photo-like augmentation of a clean pattern.
+//! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`, `corpus_lab`,
+//! `coarse_lab`, `descriptor_parts`): the quadrant patches of the labelled photos, a quadrant as
+//! the ranking sees it, and the photo-like augmentation of a clean pattern.
 
 // Not every laboratory fits a discriminant.
 #[allow(dead_code)]
@@ -7,6 +8,9 @@ pub mod lda;
 // Only the topology laboratory measures the joints.
 #[allow(dead_code)]
 pub mod topology;
+// Only the laboratories of one quadrant's ranking fits take a quadrant as the ranking sees it.
+#[allow(dead_code)]
+pub mod ranked;
 
 use proctex::cues::blur;
 use proctex::db::sample;

@@ -6,7 +6,7 @@
 use super::tone::{fit_tone_rendered, render_seed, tone_applies, tone_of_renders};
 use super::{
     Balance, RESIDUAL_GAIN_STRENGTHS, SELECTION_TONE_SEEDS, TONE_SEEDS, fit_structured_gains,
-    fit_tone, gaussian_where_grown, predicted_ratio, rougher_variants, scale_residual,
+    fit_tone, grow_residual, predicted_ratio, rougher_variants,
 };
 use crate::analyze::{Analysis, Options};
 use crate::distance::{Distances, Reference};
@@ -298,13 +298,7 @@ impl FinalFit {
         let photo = &self.photo;
         let mut a = base.clone();
         if let Model::Structured(m) = &mut a.params.model {
-            let grow = gains.map(|g| g.max(1.0).powf(alpha));
-            gaussian_where_grown(&mut m.residual, grow);
-            scale_residual(&mut m.residual, grow);
-            balance.contract_ramp(&mut m.ramp, grow);
-            if self.opts.fine_gaussian {
-                m.residual.finest_band_gaussian();
-            }
+            grow_residual(m, gains, balance, alpha, self.opts.fine_gaussian);
         }
         // Scored with a tone curve fitted to the user's seed alone (the chosen candidate's
         // curve is fitted again on [`super::TONE_SEEDS`] renders by `finish`), coloured again
