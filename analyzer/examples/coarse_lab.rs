@@ -1,7 +1,7 @@
 //! Laboratory: a family's best database start at several scales, each refined and fitted as the
 //! ranking does; prints the structure and texture distances (and the noise model's).
 //! `cargo run --release -p proctex-analyzer --example coarse_lab -- PHOTO QX QY FAMILY`
-// Only `ranked_quadrant` of the shared laboratory code.
+// Only `ranked` of the shared laboratory code.
 #[allow(dead_code)]
 mod lab_common;
 
@@ -22,8 +22,8 @@ fn main() {
         .split(',')
         .map(|s| s.parse().unwrap())
         .collect();
-    let rq = lab_common::ranked::ranked_quadrant(&args[1], q(2), q(3), kind);
-    let (small, tt, qd, per_px, m) = (&rq.small, &rq.tt, &rq.query, rq.per_px, &rq.start);
+    let rq = lab_common::ranked::RankedQuadrant::of(&args[1], q(2), q(3));
+    let (small, tt, qd, per_px, m) = (&rq.small, &rq.tt, &rq.query, rq.per_px, rq.start(kind));
     let db = Db::shipped();
     let tile = Tile::new_2d(1);
     let dbtile = Tile::new_2d(proctex::db::DB_SEED);
@@ -34,7 +34,8 @@ fn main() {
         texture_distance(db, tt, qd, &noise, &tile)
     );
     let qm = if m.swapped { qd.swapped() } else { qd.clone() };
-    let evals: usize = std::env::var("EVALS").map_or(40, |s| s.parse().unwrap());
+    let evals: usize =
+        std::env::var("EVALS").map_or(proctex::refine::DEFAULT_EVALUATIONS, |s| s.parse().unwrap());
     for f in factors {
         let mut start = m.pattern.clone();
         start.scale *= f;

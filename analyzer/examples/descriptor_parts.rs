@@ -1,12 +1,13 @@
 //! Laboratory: where a fitted render's texture distance to a photo comes from. For one
-//! development-set quadrant, the noise model and each named family (its best database start,
-//! refined and fitted as the ranking fits it, with step 6's residual amplitudes `g^α`, α from
+//! development-set quadrant, the noise model and each named family (its best database start
+//! refined with the ranking's budget of evaluations, one start where the ranking shares them
+//! between two, and fitted as the ranking fits, with step 6's residual amplitudes `g^α`, α from
 //! `ALPHAS`, default `0`: the ranking's fit) are rendered, projected on the photo's tone line and
 //! described; prints the weighted squared descriptor differences by part (mean energies, their
 //! spreads, by frequency from the finest; the quantiles), the render's mean energy and sparsity
 //! (spread / mean) against the photo's per frequency, and the total (the texture distance).
 //! `cargo run --release -p proctex-analyzer --example descriptor_parts -- PHOTO QX QY FAMILY[,FAMILY…]`
-// Only `ranked_quadrant` of the shared laboratory code.
+// Only `ranked` of the shared laboratory code.
 #[allow(dead_code)]
 mod lab_common;
 
@@ -88,20 +89,19 @@ fn main() {
     let tile = Tile::new_2d(1);
     let dbtile = Tile::new_2d(proctex::db::DB_SEED);
     let opts = Options::default();
-    for (i, family) in args[4].split(',').enumerate() {
+    let rq = lab_common::ranked::RankedQuadrant::of(&args[1], q(2), q(3));
+    let noise = analyze_prepared(&rq.small, &opts).params;
+    parts(db, &rq.tt, &rq.query, &noise, &tile, "noise");
+    for family in args[4].split(',') {
         let kind = PatternKind::from_name(family).expect("a family name");
-        let rq = lab_common::ranked::ranked_quadrant(&args[1], q(2), q(3), kind);
-        if i == 0 {
-            let noise = analyze_prepared(&rq.small, &opts).params;
-            parts(db, &rq.tt, &rq.query, &noise, &tile, "noise");
-        }
-        let m = &rq.start;
+        let m = rq.start(kind);
         let qm = if m.swapped {
             rq.query.swapped()
         } else {
             rq.query.clone()
         };
-        let mut p = refine(db, &qm, &m.pattern, 40, &dbtile, &mut |_, _| true).pattern;
+        let evals = proctex::refine::DEFAULT_EVALUATIONS;
+        let mut p = refine(db, &qm, &m.pattern, evals, &dbtile, &mut |_, _| true).pattern;
         p.scale *= rq.per_px;
         for &alpha in &alphas {
             let fitted = fit_structured_grown(&rq.small, &p, &opts, m.swapped, &tile, alpha).params;
