@@ -17,8 +17,8 @@
 mod rank;
 
 pub use rank::{
-    CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, RENDER_ORDERED, TEXTURE_WEIGHT,
-    self_distance, texture_distance,
+    CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, NOISE_NULL_MARGIN,
+    RENDER_ORDERED, TEXTURE_WEIGHT, self_distance, texture_distance,
 };
 
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
@@ -50,6 +50,32 @@ pub fn classify(photo: &Photo) -> Vec<(crate::family_classifier::Class, f64)> {
     let tt = two_tone(small);
     let (q, _) = query(&tt.structure, small.width as usize, small.height as usize);
     class_distances(&q, &crate::cues::cues(small))
+}
+
+/// The classifier's margin for `family` among `classes` ([`classify`]): the squared distance to
+/// the noise class minus that to `family`'s class; negative infinity without a family (the
+/// margin then never exceeds [`NOISE_NULL_MARGIN`]).
+pub fn class_margin(
+    classes: &[(crate::family_classifier::Class, f64)],
+    family: Option<PatternKind>,
+) -> f64 {
+    let distance = |c: crate::family_classifier::Class| {
+        classes
+            .iter()
+            .find(|(k, _)| *k == c)
+            .map_or(f64::NAN, |(_, d)| *d)
+    };
+    match family {
+        Some(k) => {
+            let margin = distance(None) - distance(Some(k));
+            if margin.is_nan() {
+                f64::NEG_INFINITY
+            } else {
+                margin
+            }
+        }
+        None => f64::NEG_INFINITY,
+    }
 }
 
 /// Which model an analysis uses.
@@ -290,11 +316,24 @@ pub struct Suggester {
     /// Fits computed elsewhere ([`Suggester::set_fitted`]: the browser's helper workers), by
     /// family (in `starts` order), and the noise model's ([`Suggester::set_noise_fit`]).
     fitted: Vec<Option<Fit>>,
-    noise_fit: Option<Fit>,
+    noise_fit: Option<NoiseFit>,
+    /// The family classifier's nearest family (the first of `order`, when it knows it) and its
+    /// margin over the noise class on the photo ([`class_margin`], [`NOISE_NULL_MARGIN`]).
+    nearest_family: Option<PatternKind>,
+    class_margin: f64,
 }
 
 /// A candidate fitted on the reduced photo and its texture distance to it.
 pub type Fit = (Params, f32);
+
+/// The noise model fitted on the reduced photo ([`Suggester::fit_noise`]): its fit, and the
+/// family classifier's margin on its render for the photo's nearest family ([`class_margin`],
+/// [`NOISE_NULL_MARGIN`]).
+#[derive(Clone, Debug)]
+pub struct NoiseFit {
+    pub fit: Fit,
+    pub render_margin: f64,
+}
 
 /// A family's pattern after refinement (or its retrieved one), its refined distance (`None`:
 /// not refined), and whether its tones pair reversed.
@@ -330,12 +369,14 @@ impl Suggester {
         let classes = class_distances(&q, &cues);
         let mut class_distance = vec![f64::INFINITY; starts.len()];
         let mut order = Vec::new();
-        for (kind, distance) in classes.into_iter().filter_map(|(c, d)| Some((c?, d))) {
+        for (kind, distance) in classes.iter().filter_map(|&(c, d)| Some((c?, d))) {
             if let Some(i) = index(kind) {
                 class_distance[i] = distance;
                 order.push(i);
             }
         }
+        let nearest_family = order.first().map(|&i| starts[i][0].pattern.kind);
+        let class_margin = class_margin(&classes, nearest_family);
         let unknown: Vec<usize> = (0..starts.len()).filter(|i| !order.contains(i)).collect();
         order.extend(unknown);
         Suggester {
@@ -356,6 +397,8 @@ impl Suggester {
             is_refined,
             fitted,
             noise_fit: None,
+            nearest_family,
+            class_margin,
         }
     }
 

@@ -19,8 +19,11 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the ranking last changed: 183 of 432 (42.4 %) since the
-/// classifier reads the photo's cues and its opinion orders the fitted families
+/// The rate measured on all 432 cases when the ranking last changed: 185 of 432 (42.8 %) since the
+/// classifier's nearest family comes first where the noise model's render does not explain the
+/// photo's margin (`retrieve::NOISE_NULL_MARGIN`; 184 before it, with cells' warp searched while
+/// it bends); 183 since the classifier reads the photo's cues and its opinion orders the fitted
+/// families
 /// (`retrieve::CLASSIFIER_WEIGHT`: perlin 2, grid 24, brick 29, cells 24, wood lines 38 of 48;
 /// the development set's structured patches labelled 51 → 56 of 100); 198 before, with the
 /// classifier trained on the corpus's three batches (190 with the first two) since the families
@@ -35,7 +38,7 @@ const QUICK_STRIDE: usize = 3;
 /// texture, 259 (266 with the third batch; not kept: the benchmarks' brick crop lost its family
 /// and its speed). The test guards against a regression: the rate plus two
 /// standard errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
-const MEASURED_RATE: f32 = 183.0 / 432.0;
+const MEASURED_RATE: f32 = 185.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
@@ -115,10 +118,10 @@ fn synthetic_round_trip_finds_the_right_family() {
         100.0 * se,
         100.0 * MEASURED_RATE
     );
-    // Measured on all 432 cases: median 3.01, 90th percentile 5.08 (5.03 before the classifier's
-    // cues and opinion in the order; 5.15 with the first two
-    // batches; 2.55 and 3.67 with the family nearest by retrieval fitted beside the classifier's
-    // three).
+    // Measured on all 432 cases: median 3.01, 90th percentile 5.32 (5.08 before the rule of
+    // `NOISE_NULL_MARGIN`, whose first families are farther than the noise model; 5.03 before the
+    // classifier's cues and opinion in the order; 5.15 with the first two batches; 2.55 and 3.67
+    // with the family nearest by retrieval fitted beside the classifier's three).
     assert!(median <= 3.3 && p90 <= 5.6, "median {median}, p90 {p90}");
 }
 
@@ -148,6 +151,34 @@ fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
     assert!(dark_skewness(&gravel) > DARK_NETWORK_SKEWNESS);
     let ranked = rank_with(db, &gravel, &opts, Refinement::default(), 1, &|_, _| true);
     assert_eq!(ranked[0].name, "noise");
+}
+
+/// A quadrant of the ashlar wall, which the noise model wins by texture distance, looks like
+/// brick to the family classifier far more than the noise model's own render of it does
+/// (`retrieve::NOISE_NULL_MARGIN`): the classifier's nearest family comes first, the noise model
+/// right after the fitted families, though its score is the best. (On gravel the render explains
+/// the photo's margin, and the noise model stays first: the test above.)
+#[test]
+fn a_family_that_the_noise_models_render_does_not_explain_ranks_first() {
+    use proctex::retrieve::{NOISE_NULL_MARGIN, RENDER_ORDERED, Suggester, class_margin, classify};
+    let db = Db::shipped();
+    let opts = Options::default();
+    let ashlar = common::dev_quadrant("megaglest_ashlar_256.png");
+    let classes = classify(&ashlar);
+    let nearest = classes.iter().find_map(|(c, _)| *c).expect("a family");
+    let noise = Suggester::new(db, &ashlar, &opts, Refinement::default()).fit_noise(db);
+    let unexplained = class_margin(&classes, Some(nearest)) - noise.render_margin;
+    assert!(unexplained > NOISE_NULL_MARGIN, "{unexplained}");
+    let ranked = rank_with(db, &ashlar, &opts, Refinement::default(), 1, &|_, _| true);
+    let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
+    assert_eq!(names[0], nearest.name(), "{names:?}");
+    assert_eq!(names[RENDER_ORDERED], "noise", "{names:?}");
+    let best_family = ranked[..RENDER_ORDERED]
+        .iter()
+        .map(|s| s.score)
+        .fold(f32::INFINITY, f32::min);
+    let noise_score = ranked[RENDER_ORDERED].score;
+    assert!(noise_score <= best_family, "{noise_score} {best_family}");
 }
 
 /// A photo no larger than the ranking's copy is ranked unreduced: the noise model's fit there is

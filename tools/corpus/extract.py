@@ -8,9 +8,12 @@ decoded to PNG by `corpus_lab dds` (run after this script; the command is printe
 Names: 0ad-data `art/textures/terrain/types/a/b.png.cached.dds` -> `a__b.png`;
 nexuiz-textures `textures/a/b.jpg` -> `a__b.jpg`; redeclipse-data and supertuxkart-data
 `.../dir/file` -> `re__dir__file` and `stk__dir__file`; cube2-data and extremetuxracer-data
-likewise, `cube2__dir__file` and `etr__dir__file`.
+likewise, `cube2__dir__file` and `etr__dir__file`; ufoai-textures `textures/a/b.png` (in its
+0textures.pk3) -> `ufo__a__b.png`.
 
-Usage: tools/corpus/extract.py OUT [--cache DIR]   (the packages are about 3.5 GB together)
+Usage: tools/corpus/extract.py OUT [--cache DIR] [--also LABELS]...   (the packages are about 3.5 GB
+together; with not_kept/labels4.tsv 3.8 GB). `--also` adds a label file that the product's table
+is not trained on (`not_kept/`: batches measured and not kept, docs/devset.md).
 """
 import os
 import subprocess
@@ -29,11 +32,13 @@ TREE_TAGS = {
 }
 
 
-def labelled():
-    """The labelled files of every labels*.tsv here, by package."""
+def labelled(also=()):
+    """The labelled files of every labels*.tsv here and of the label files `also`, by package."""
     by_package = {}
-    for labels in sorted(f for f in os.listdir(HERE) if f.startswith("labels") and f.endswith(".tsv")):
-        for line in open(os.path.join(HERE, labels)):
+    here = sorted(os.path.join(HERE, f) for f in os.listdir(HERE)
+                  if f.startswith("labels") and f.endswith(".tsv"))
+    for labels in here + list(also):
+        for line in open(labels):
             if line.startswith("#") or not line.strip():
                 continue
             name, _family, package = line.rstrip("\n").split("\t")
@@ -91,9 +96,10 @@ def main():
     args = sys.argv[1:]
     out = os.path.abspath(args[0])
     cache = os.path.abspath(args[args.index("--cache") + 1]) if "--cache" in args else out + "-debs"
+    also = [args[i + 1] for i, a in enumerate(args) if a == "--also"]
     os.makedirs(os.path.join(out, "dds"), exist_ok=True)
     os.makedirs(cache, exist_ok=True)
-    for package, wanted in sorted(labelled().items()):
+    for package, wanted in sorted(labelled(also).items()):
         deb = download(package, cache)
         with tempfile.TemporaryDirectory() as tmp:
             if package == "0ad-data":
@@ -112,6 +118,9 @@ def main():
             elif package == "nexuiz-textures":
                 z = extract_member(deb, "/usr/share/games/nexuiz/data/textures.pk3", tmp)
                 found = from_zip(z, "textures/", lambda flat: flat, wanted, out)
+            elif package == "ufoai-textures":
+                z = extract_member(deb, "/usr/share/games/ufoai/base/0textures.pk3", tmp)
+                found = from_zip(z, "textures/", lambda flat: "ufo__" + flat, wanted, out)
             else:
                 tag = TREE_TAGS[package]
                 found = from_tree(deb, tag, wanted, out)

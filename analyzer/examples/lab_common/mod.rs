@@ -1,6 +1,6 @@
 //! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`, `corpus_lab`,
-//! `coarse_lab`, `descriptor_parts`): the quadrant patches of the labelled photos, a quadrant as
-//! the ranking sees it, and the photo-like augmentation of a clean pattern.
+//! `coarse_lab`, `descriptor_parts`, `null_gate_lab`): the quadrant patches of the labelled
+//! photos, a quadrant as the ranking sees it, and the photo-like augmentation of a clean pattern.
 
 // Not every laboratory fits a discriminant.
 #[allow(dead_code)]
