@@ -2,22 +2,27 @@
 """The family classifier's margin beyond the noise model's render (retrieve::NOISE_NULL_MARGIN),
 cross-validated on the development set, offline.
 
-Where the product put the noise model first (and the photo has no dark network), the classifier's
-nearest family comes first instead when its margin on the photo (squared distance to the noise
-class minus that to the nearest family) exceeds the same margin on the noise model's render of
-the photo by more than tau. Inputs: a run made without the rule (`proctex fidelity --set
-../shared/photos/dev --json`: each patch's choice and whether a chosen family's fidelity is no
-worse than the noise model's) and the margins of `examples/null_gate_lab.rs` (its first render's
-seed is the ranking's).
+Where the noise model would come first by its score (below every fitted family's, and the photo
+has no dark network), the classifier's nearest family comes first instead when its margin on the
+photo (squared distance to the noise class minus that to the nearest family) exceeds the same
+margin on the noise model's render of the photo by more than tau. Everything is in a run's JSON
+(`proctex fidelity --set ../shared/photos/dev --json`): the ranking's scores, the classifier's
+distances of the patch (`classifier`, `classifier_distances`) and of the noise model's render
+(`noise_render_margin`), whether a chosen family's fidelity is no worse than the noise model's;
+so the run may be made with or without the rule. Runs made before the yardstick recorded
+`noise_render_margin` take the margins from `examples/null_gate_lab.rs`'s TSV instead (its first
+render's seed is the ranking's).
 
 Protocol: 4 folds by photo (devset::fold_of); for each held-out fold the tau with the most
 structured patches labelled on the other folds among those keeping >= 95 % of their stochastic
 patches served (ties: more served, then the middle of the tied taus), scored on the held-out
-fold. A stochastic patch the rule changes counts as not served (conservatively). Also printed,
-the same way: the photo's margin alone (no render), and the best fitted family first instead of
-the classifier's nearest.
+fold. A stochastic patch served by a family that the run did not choose counts as not served
+(conservatively). Also printed, the same way: the photo's margin alone (no render), and the best
+fitted family first instead of the classifier's nearest; and, as a check, how many of the run's
+choices the replay at `--current` (the run's own threshold; inf for a run without the rule)
+reproduces.
 
-Usage: tools/devset_null_gate_cv.py RUN.jsonl NULL.tsv
+Usage: tools/devset_null_gate_cv.py RUN.jsonl [NULL.tsv] [--current TAU]
 """
 import json
 import sys
@@ -27,24 +32,27 @@ from devset_occam_cv import fold_of, patch_overall
 QUADRANTS = ["top-left", "top-right", "bottom-left", "bottom-right"]
 SKEWNESS = 7  # cues::CUE_NAMES index of "skewness"
 DARK_NETWORK_SKEWNESS = -0.599
+FITTED = 3  # retrieve::RENDER_ORDERED
 FOLDS = 4
 GRID = [x / 4 for x in range(0, 121)]  # 0 .. 30
 
 
-def margins(path):
-    """(file, quadrant) -> {class: (photo distance, [render distances])}."""
+def lab_margins(path):
+    """(file, quadrant) -> the noise render's margin for the photo's nearest family, from the
+    laboratory's TSV (its first render)."""
     out = {}
     for line in open(path):
         f = line.rstrip("\n").split("\t")
         d = {}
         for x in f[4:]:
             k, photo, renders = x.split(":")
-            d[k] = (float(photo), [float(v) for v in renders.split("/")])
-        out[(f[0], int(f[1]))] = d
+            d[k] = (float(photo), float(renders.split("/")[0]))
+        nearest = min((k for k in d if k != "noise"), key=lambda k: d[k][0])
+        out[(f[0], int(f[1]))] = d["noise"][1] - d[nearest][1]
     return out
 
 
-def patches(run, null):
+def patches(run, lab):
     out = []
     for line in open(run):
         if not line.startswith('{"photo"'):
@@ -52,31 +60,42 @@ def patches(run, null):
         p = json.loads(line)["photo"]
         e = p["entry"]
         for i, c in enumerate(p["choices"]):
-            d = null[(e["file"], QUADRANTS.index(c["patch"]))]
-            nearest = min((k for k in d if k != "noise"), key=lambda k: d[k][0])
-            photo = d["noise"][0] - d[nearest][0]
-            render = d["noise"][1][0] - d[nearest][1][0]
-            served = c["chosen"] == "noise" or (
-                patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
-            best = next(r["name"] for r in c["ranking"] if r["name"] != "noise")
+            classes = dict(zip(c["classifier"], c["classifier_distances"]))
+            families = [k for k in c["classifier"] if k != "noise"]
+            nearest = families[0]
+            photo = classes["noise"] - classes[nearest]
+            if lab is not None:
+                render = lab[(e["file"], QUADRANTS.index(c["patch"]))]
+            else:
+                render = c["noise_render_margin"]
+            score = {r["name"]: r["score"] for r in c["ranking"]}
+            fitted = [k for k in families[:FITTED] if k in score]
+            best = min(fitted, key=lambda k: score[k])
+            dark = c["photo_cues"][SKEWNESS] < DARK_NETWORK_SKEWNESS
+            by_score = not dark and score["noise"] <= score[best]
+            no_worse = patch_overall(p["auto"], i) <= patch_overall(p["noise"], i)
             out.append(dict(file=e["file"], structured=e["category"] == "structured",
-                            labels=e["families"] or [], chosen=c["chosen"], served=served,
-                            nearest=nearest, best=best, beyond=photo - render, photo=photo,
-                            dark=c["photo_cues"][SKEWNESS] < DARK_NETWORK_SKEWNESS))
+                            labels=e["families"] or [], chosen=c["chosen"], no_worse=no_worse,
+                            by_score=by_score, nearest=nearest, best=best,
+                            beyond=photo - render, photo=photo))
     return out
+
+
+def choice(pt, key, tau, first):
+    """The first model with the rule at `tau` (`first`: which family the rule puts first)."""
+    if pt["by_score"]:
+        return pt[first] if pt[key] > tau else "noise"
+    return pt["chosen"]
 
 
 def tally(pts, key, tau, first):
     labelled = served = 0
     for pt in pts:
-        if pt["chosen"] == "noise" and not pt["dark"] and pt[key] > tau:
-            chosen, ok = pt[first], False
-        else:
-            chosen, ok = pt["chosen"], pt["served"]
+        chosen = choice(pt, key, tau, first)
         if pt["structured"]:
             labelled += chosen in pt["labels"]
         else:
-            served += ok
+            served += chosen == "noise" or (chosen == pt["chosen"] and pt["no_worse"])
     return labelled, served
 
 
@@ -90,8 +109,17 @@ def choose(pts, key, first):
 
 
 def main():
-    pts = patches(sys.argv[1], margins(sys.argv[2]))
-    print("the run: labelled %d, served %d" % tally(pts, "beyond", float("inf"), "nearest"))
+    args = sys.argv[1:]
+    current = float("inf")
+    if "--current" in args:
+        k = args.index("--current")
+        current = float(args[k + 1])
+        del args[k:k + 2]
+    lab = lab_margins(args[1]) if len(args) > 1 else None
+    pts = patches(args[0], lab)
+    same = sum(choice(pt, "beyond", current, "nearest") == pt["chosen"] for pt in pts)
+    print(f"replay at tau {current}: {same} of {len(pts)} of the run's choices; "
+          "without the rule: labelled %d, served %d" % tally(pts, "beyond", float("inf"), "nearest"))
     for key, first, what in [("beyond", "nearest", "the photo's margin beyond the render's"),
                              ("photo", "nearest", "the photo's margin alone"),
                              ("beyond", "best", "beyond the render's, the best fitted family")]:

@@ -148,6 +148,13 @@ pub struct PatchChoice {
     /// from every texture the classifier was trained on (`corpus_lab table` prints the corpus's
     /// own held-out spread), the others how much nearer one class is than another.
     pub classifier_distances: Vec<f64>,
+    /// The classifier's margin for the patch's nearest family (its noise class's distance minus
+    /// that family's; [`crate::retrieve::class_margin`]) on the noise model's render as the
+    /// ranking fitted it, rendered at the patch's size (the ranking's, for a patch no larger
+    /// than [`crate::retrieve::RANK_SIZE`]): with `classifier_distances` and the ranking's
+    /// scores, what choosing [`crate::retrieve::NOISE_NULL_MARGIN`] again needs
+    /// (`tools/devset_null_gate_cv.py`).
+    pub noise_render_margin: f64,
 }
 
 /// [`crate::noise_tone::numbers`] of the noise model in a ranking (0 if it has none).
@@ -231,6 +238,16 @@ impl PhotoResult {
                 use crate::specks::speck_fraction;
                 let names: Vec<String> = run.ranking.iter().map(|s| s.name.to_string()).collect();
                 let classes = crate::retrieve::classify(run.source);
+                let nearest = classes.iter().find_map(|(c, _)| *c);
+                let noise_render_margin = run
+                    .ranking
+                    .iter()
+                    .find(|c| c.name == "noise")
+                    .and_then(|c| c.preview.as_ref())
+                    .map_or(f64::NEG_INFINITY, |p| {
+                        let render = render_params_at_photo_size(p, run.source);
+                        crate::retrieve::class_margin(&crate::retrieve::classify(&render), nearest)
+                    });
                 choices[run.patch] = Some(PatchChoice {
                     patch: PATCHES[run.patch],
                     chosen: names.first().cloned().unwrap_or_else(|| "noise".into()),
@@ -263,6 +280,7 @@ impl PhotoResult {
                         .map(|(c, _)| c.map_or("noise", |k| k.name()).to_string())
                         .collect(),
                     classifier_distances: classes.iter().map(|c| c.1).collect(),
+                    noise_render_margin,
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -673,6 +691,7 @@ mod tests {
                     noise_numbers: if file == "a.png" { 60 } else { 100 },
                     classifier: Vec::new(),
                     classifier_distances: vec![1.0],
+                    noise_render_margin: 0.0,
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

@@ -126,7 +126,7 @@ pub const CLASSIFIER_WEIGHT: f32 = 0.02;
 /// the noise model's own statistics explain.
 ///
 /// Chosen by cross-validation on the development set (offline, from one run's recorded choices
-/// and `examples/null_gate_lab.rs`'s margins; 4 folds by photo; the most structured patches
+/// and margins, `tools/devset_null_gate_cv.py`; 4 folds by photo; the most structured patches
 /// labelled among the thresholds that keep ≥ 95 % of the stochastic patches served, ties broken
 /// by the middle of the tied thresholds): held out, structured labelled 58 → 62 of 100 and
 /// stochastic served 104 → 103 of 108; the folds chose 10.25, 18.25, 18 and 10.25. This value
