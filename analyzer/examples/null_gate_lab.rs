@@ -1,6 +1,6 @@
 //! The noise model's render as the family classifier's null (a laboratory; docs/devset.md, "A
 //! fourth batch of training textures; the noise model's render as the family classifier's
-//! null"; `retrieve::NOISE_NULL_MARGIN`).
+//! null"; `retrieve::RENDER_NULL_MARGIN`, which generalises it to any first candidate).
 //!
 //! For every quadrant of the development set, as the ranking sees it (reduced to `RANK_SIZE`):
 //! the family classifier's squared class distances of the photo, and those of the noise model's

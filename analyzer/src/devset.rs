@@ -148,11 +148,10 @@ pub struct PatchChoice {
     /// from every texture the classifier was trained on (`corpus_lab table` prints the corpus's
     /// own held-out spread), the others how much nearer one class is than another.
     pub classifier_distances: Vec<f64>,
-    /// The classifier's margin for the patch's nearest family (its noise class's distance minus
-    /// that family's; [`crate::retrieve::class_margin`]) on the noise model's render as the
-    /// ranking fitted it, rendered at the patch's size (the ranking's, for a patch no larger
-    /// than [`crate::retrieve::RANK_SIZE`]): with `classifier_distances` and the ranking's
-    /// scores, what choosing [`crate::retrieve::NOISE_NULL_MARGIN`] again needs
+    /// The classifier's margin for the patch's nearest family over its noise class
+    /// ([`crate::retrieve::class_margin`]) on the noise model's render as the ranking rendered
+    /// it: with `classifier_distances`, the candidates' own and the ranking's scores, what
+    /// choosing [`crate::retrieve::RENDER_NULL_MARGIN`] again needs
     /// (`tools/devset_null_gate_cv.py`).
     pub noise_render_margin: f64,
 }
@@ -195,6 +194,9 @@ pub struct Candidate {
     pub specks: f64,
     /// Structure cues of that render ([`crate::cues::cues`]).
     pub cues: [f32; crate::cues::CUES],
+    /// The family classifier's squared distances for the candidate's render as the ranking
+    /// rendered it, by class name (`noise` for the noise class; [`crate::retrieve::classify`]).
+    pub classifier_distances: std::collections::BTreeMap<String, f64>,
 }
 
 /// One photo measured: the choices, and the fidelity of the automatic choice and of the noise
@@ -239,14 +241,18 @@ impl PhotoResult {
                 let names: Vec<String> = run.ranking.iter().map(|s| s.name.to_string()).collect();
                 let classes = crate::retrieve::classify(run.source);
                 let nearest = classes.iter().find_map(|(c, _)| *c);
+                // The classes of a candidate's render as the ranking rendered and classified it.
+                let render_classes = |c: &crate::retrieve::Suggestion| {
+                    c.render_classes
+                        .clone()
+                        .expect("every candidate of a full ranking is fitted")
+                };
                 let noise_render_margin = run
                     .ranking
                     .iter()
                     .find(|c| c.name == "noise")
-                    .and_then(|c| c.preview.as_ref())
-                    .map_or(f64::NEG_INFINITY, |p| {
-                        let render = render_params_at_photo_size(p, run.source);
-                        crate::retrieve::class_margin(&crate::retrieve::classify(&render), nearest)
+                    .map_or(f64::NEG_INFINITY, |c| {
+                        crate::retrieve::class_margin(&render_classes(c), nearest, None)
                     });
                 choices[run.patch] = Some(PatchChoice {
                     patch: PATCHES[run.patch],
@@ -269,6 +275,10 @@ impl PhotoResult {
                                 refined: c.refined_distance,
                                 specks: speck_fraction(&render),
                                 cues: crate::cues::cues(&render),
+                                classifier_distances: render_classes(c)
+                                    .into_iter()
+                                    .map(|(k, d)| (k.map_or("noise", |k| k.name()).into(), d))
+                                    .collect(),
                             }
                         })
                         .collect(),
@@ -682,6 +692,7 @@ mod tests {
                             0.004
                         },
                         cues: [0.0; crate::cues::CUES],
+                        classifier_distances: Default::default(),
                     }],
                     photo_specks: 0.004,
                     // The chosen synthesis: past the limit on the first photo only.

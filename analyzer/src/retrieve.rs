@@ -17,14 +17,14 @@
 mod rank;
 
 pub use rank::{
-    CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, NOISE_NULL_MARGIN,
+    CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, RENDER_NULL_MARGIN,
     RENDER_ORDERED, TEXTURE_WEIGHT, self_distance, texture_distance,
 };
 
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
 use crate::db::{Db, Match, query};
 use crate::error::Result;
-use crate::family_classifier::class_distances;
+use crate::family_classifier::{Class, class_distances};
 use crate::gabor::Descriptor;
 use crate::input::Photo;
 use crate::noise::Tile;
@@ -44,7 +44,7 @@ pub const RANK_SIZE: u32 = 256;
 /// The family classifier's classes for a photo as the ranking sees it (reduced to
 /// [`RANK_SIZE`], its two-tone structure map described, its cues), nearest first, with their distances
 /// ([`crate::family_classifier::class_distances`]; `None`: the noise class).
-pub fn classify(photo: &Photo) -> Vec<(crate::family_classifier::Class, f64)> {
+pub fn classify(photo: &Photo) -> Vec<(Class, f64)> {
     let small = photo.reduced(RANK_SIZE);
     let small = small.as_ref().unwrap_or(photo);
     let tt = two_tone(small);
@@ -52,29 +52,15 @@ pub fn classify(photo: &Photo) -> Vec<(crate::family_classifier::Class, f64)> {
     class_distances(&q, &crate::cues::cues(small))
 }
 
-/// The classifier's margin for `family` among `classes` ([`classify`]): the squared distance to
-/// the noise class minus that to `family`'s class; negative infinity without a family (the
-/// margin then never exceeds [`NOISE_NULL_MARGIN`]).
-pub fn class_margin(
-    classes: &[(crate::family_classifier::Class, f64)],
-    family: Option<PatternKind>,
-) -> f64 {
-    let distance = |c: crate::family_classifier::Class| {
-        classes
-            .iter()
-            .find(|(k, _)| *k == c)
-            .map_or(f64::NAN, |(_, d)| *d)
-    };
-    match family {
-        Some(k) => {
-            let margin = distance(None) - distance(Some(k));
-            if margin.is_nan() {
-                f64::NEG_INFINITY
-            } else {
-                margin
-            }
-        }
-        None => f64::NEG_INFINITY,
+/// The classifier's margin for class `of` over class `over` among `classes` ([`classify`]):
+/// the squared distance to `over` minus that to `of` (half of it a log-likelihood ratio);
+/// negative infinity where either is missing (the margin then never exceeds
+/// [`RENDER_NULL_MARGIN`]).
+pub fn class_margin(classes: &[(Class, f64)], of: Class, over: Class) -> f64 {
+    let distance = |c: Class| classes.iter().find(|(k, _)| *k == c).map(|(_, d)| *d);
+    match (distance(of), distance(over)) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NEG_INFINITY,
     }
 }
 
@@ -130,6 +116,9 @@ pub struct Suggestion {
     /// The candidate fitted on the reduced photo (for thumbnails); `None` for a family not
     /// fitted yet.
     pub preview: Option<Params>,
+    /// The family classifier's classes for that fit's render, as the ranking renders it
+    /// ([`classify`]; [`RENDER_NULL_MARGIN`]); `None` for a family not fitted yet.
+    pub render_classes: Option<Vec<(Class, f64)>>,
 }
 
 /// How much refinement [`suggest_with`] does.
@@ -316,23 +305,21 @@ pub struct Suggester {
     /// Fits computed elsewhere ([`Suggester::set_fitted`]: the browser's helper workers), by
     /// family (in `starts` order), and the noise model's ([`Suggester::set_noise_fit`]).
     fitted: Vec<Option<Fit>>,
-    noise_fit: Option<NoiseFit>,
-    /// The family classifier's nearest family (the first of `order`, when it knows it) and its
-    /// margin over the noise class on the photo ([`class_margin`], [`NOISE_NULL_MARGIN`]).
+    noise_fit: Option<Fit>,
+    /// The family classifier's classes for the photo ([`classify`]), and its nearest family
+    /// (the first of `order`, when it knows it): what [`RENDER_NULL_MARGIN`] compares the first
+    /// candidate's render with.
+    classes: Vec<(Class, f64)>,
     nearest_family: Option<PatternKind>,
-    class_margin: f64,
 }
 
-/// A candidate fitted on the reduced photo and its texture distance to it.
-pub type Fit = (Params, f32);
-
-/// The noise model fitted on the reduced photo ([`Suggester::fit_noise`]): its fit, and the
-/// family classifier's margin on its render for the photo's nearest family ([`class_margin`],
-/// [`NOISE_NULL_MARGIN`]).
-#[derive(Clone, Debug)]
-pub struct NoiseFit {
-    pub fit: Fit,
-    pub render_margin: f64,
+/// A candidate fitted on the reduced photo: its parameters, the texture distance of their
+/// render to the photo, and the family classifier's classes for that render ([`classify`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Fit {
+    pub params: Params,
+    pub distance: f32,
+    pub render_classes: Vec<(Class, f64)>,
 }
 
 /// A family's pattern after refinement (or its retrieved one), its refined distance (`None`:
@@ -376,7 +363,6 @@ impl Suggester {
             }
         }
         let nearest_family = order.first().map(|&i| starts[i][0].pattern.kind);
-        let class_margin = class_margin(&classes, nearest_family);
         let unknown: Vec<usize> = (0..starts.len()).filter(|i| !order.contains(i)).collect();
         order.extend(unknown);
         Suggester {
@@ -397,8 +383,8 @@ impl Suggester {
             is_refined,
             fitted,
             noise_fit: None,
+            classes,
             nearest_family,
-            class_margin,
         }
     }
 

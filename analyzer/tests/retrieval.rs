@@ -19,9 +19,13 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the ranking last changed: 185 of 432 (42.8 %) since the
-/// classifier's nearest family comes first where the noise model's render does not explain the
-/// photo's margin (`retrieve::NOISE_NULL_MARGIN`; 184 before it, with cells' warp searched while
+/// The rate measured on all 432 cases when the ranking last changed: 165 of 432 (38.2 %) since the
+/// classifier's nearest family comes first where a family's own render does not explain the
+/// photo's margin as well as where the noise model's does not (`retrieve::RENDER_NULL_MARGIN`;
+/// brick 30 → 23 of 48, planks 38 → 31, wood lines 37 → 33: on bare patterns the classifier,
+/// trained on photos, puts perlin or wood lines nearest, and a fitted render with its residual
+/// grain is no bare pattern; on the development set's photos 65 → 69 of 100, on 183 textures
+/// never tuned on 150 → 168 of 268); 185 since the noise model's part of that rule (184 before it, with cells' warp searched while
 /// it bends); 183 since the classifier reads the photo's cues and its opinion orders the fitted
 /// families
 /// (`retrieve::CLASSIFIER_WEIGHT`: perlin 2, grid 24, brick 29, cells 24, wood lines 38 of 48;
@@ -38,7 +42,7 @@ const QUICK_STRIDE: usize = 3;
 /// texture, 259 (266 with the third batch; not kept: the benchmarks' brick crop lost its family
 /// and its speed). The test guards against a regression: the rate plus two
 /// standard errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
-const MEASURED_RATE: f32 = 185.0 / 432.0;
+const MEASURED_RATE: f32 = 165.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
@@ -118,11 +122,12 @@ fn synthetic_round_trip_finds_the_right_family() {
         100.0 * se,
         100.0 * MEASURED_RATE
     );
-    // Measured on all 432 cases: median 3.01, 90th percentile 5.32 (5.08 before the rule of
-    // `NOISE_NULL_MARGIN`, whose first families are farther than the noise model; 5.03 before the
+    // Measured on all 432 cases: median 3.18, 90th percentile 5.83 since `RENDER_NULL_MARGIN`
+    // covers the families (3.01 and 5.32 with the noise model's part alone, 5.08 before it: the
+    // families that rule puts first are farther than the first by score; 5.03 before the
     // classifier's cues and opinion in the order; 5.15 with the first two batches; 2.55 and 3.67
     // with the family nearest by retrieval fitted beside the classifier's three).
-    assert!(median <= 3.3 && p90 <= 5.6, "median {median}, p90 {p90}");
+    assert!(median <= 3.5 && p90 <= 6.1, "median {median}, p90 {p90}");
 }
 
 /// A photo of thin dark cracks: the noise model matches its histogram and spectrum closely
@@ -155,20 +160,23 @@ fn a_dark_network_ranks_the_best_family_above_the_noise_model() {
 
 /// A quadrant of the ashlar wall, which the noise model wins by texture distance, looks like
 /// brick to the family classifier far more than the noise model's own render of it does
-/// (`retrieve::NOISE_NULL_MARGIN`): the classifier's nearest family comes first, the noise model
+/// (`retrieve::RENDER_NULL_MARGIN`): the classifier's nearest family comes first, the noise model
 /// right after the fitted families, though its score is the best. (On gravel the render explains
 /// the photo's margin, and the noise model stays first: the test above.)
 #[test]
 fn a_family_that_the_noise_models_render_does_not_explain_ranks_first() {
-    use proctex::retrieve::{NOISE_NULL_MARGIN, RENDER_ORDERED, Suggester, class_margin, classify};
+    use proctex::retrieve::{
+        RENDER_NULL_MARGIN, RENDER_ORDERED, Suggester, class_margin, classify,
+    };
     let db = Db::shipped();
     let opts = Options::default();
     let ashlar = common::dev_quadrant("megaglest_ashlar_256.png");
     let classes = classify(&ashlar);
     let nearest = classes.iter().find_map(|(c, _)| *c).expect("a family");
     let noise = Suggester::new(db, &ashlar, &opts, Refinement::default()).fit_noise(db);
-    let unexplained = class_margin(&classes, Some(nearest)) - noise.render_margin;
-    assert!(unexplained > NOISE_NULL_MARGIN, "{unexplained}");
+    let unexplained = class_margin(&classes, Some(nearest), None)
+        - class_margin(&noise.render_classes, Some(nearest), None);
+    assert!(unexplained > RENDER_NULL_MARGIN, "{unexplained}");
     let ranked = rank_with(db, &ashlar, &opts, Refinement::default(), 1, &|_, _| true);
     let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
     assert_eq!(names[0], nearest.name(), "{names:?}");
@@ -179,6 +187,40 @@ fn a_family_that_the_noise_models_render_does_not_explain_ranks_first() {
         .fold(f32::INFINITY, f32::min);
     let noise_score = ranked[RENDER_ORDERED].score;
     assert!(noise_score <= best_family, "{noise_score} {best_family}");
+}
+
+/// The same null for a family that the scores put first: on a quadrant of interlocking pavers,
+/// perlin's blotches come nearest by texture and structure distance, but the photo is nearer to
+/// the classifier's nearest family (grid, the photo's label) than to perlin by more than the
+/// threshold, and than perlin's own render is by more again, so grid comes first, and perlin
+/// keeps its place among the fitted families in the classifier's order.
+#[test]
+fn a_family_that_the_first_familys_render_does_not_explain_ranks_first() {
+    use proctex::pattern::PatternKind;
+    use proctex::retrieve::{RENDER_NULL_MARGIN, RENDER_ORDERED, class_margin, classify};
+    let db = Db::shipped();
+    let opts = Options::default();
+    let pavers = common::dev_quadrant("torcs_pavers_512.png");
+    let classes = classify(&pavers);
+    let nearest = classes.iter().find_map(|(c, _)| *c).expect("a family");
+    assert_eq!(nearest, PatternKind::Grid);
+    let ranked = rank_with(db, &pavers, &opts, Refinement::default(), 1, &|_, _| true);
+    let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
+    assert_eq!(names[0], "grid", "{names:?}");
+    // The family with the best score is another fitted one, whose render does not explain the
+    // photo's margin for grid over it.
+    let fitted = &ranked[..RENDER_ORDERED];
+    let best = fitted
+        .iter()
+        .min_by(|a, b| a.score.total_cmp(&b.score))
+        .expect("fitted families");
+    assert_ne!(best.name, "grid", "{names:?}");
+    let kind = PatternKind::from_name(best.name);
+    let render = best.render_classes.as_deref().expect("fitted");
+    let photo = class_margin(&classes, Some(nearest), kind);
+    let beyond = photo - class_margin(render, Some(nearest), kind);
+    assert!(photo > RENDER_NULL_MARGIN, "{photo}");
+    assert!(beyond > RENDER_NULL_MARGIN, "{beyond}");
 }
 
 /// A photo no larger than the ranking's copy is ranked unreduced: the noise model's fit there is

@@ -308,12 +308,12 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
              distance in the classifier beyond the nearest's × the photo's self distance + \
              margin, the best of them first and the others in the classifier's order, the noise \
              model first or after them by its texture distance against the best, unless the \
-             classifier's margin for its nearest family over its noise class is larger on the \
-             photo than on the noise model's render by more than {null} (then that family \
-             first); then the other patterns in the classifier's order, score structure distance \
-             + margin):\n",
+             classifier's margin for its nearest family over the first candidate's class is \
+             larger on the photo than on that candidate's render by more than {null}, and for a \
+             family the photo's margin itself as well (then that family first); then the other \
+             patterns in the classifier's order, score structure distance + margin):\n",
             n = proctex::retrieve::RENDER_ORDERED,
-            null = proctex::retrieve::NOISE_NULL_MARGIN,
+            null = proctex::retrieve::RENDER_NULL_MARGIN,
             s = 1.0 - proctex::retrieve::TEXTURE_WEIGHT,
             t = proctex::retrieve::TEXTURE_WEIGHT,
             c = proctex::retrieve::CLASSIFIER_WEIGHT,
