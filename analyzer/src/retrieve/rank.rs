@@ -132,7 +132,7 @@ pub const CLASSIFIER_WEIGHT: f32 = 0.02;
 /// is far surer of its family on it than on the photo, and the margin beyond it is large even
 /// where the photo hesitates between the two (a brick wall's quadrant whose photo margin for
 /// perlin over brick was 1.4 went to perlin without the second condition). The noise model's
-/// render is as grainy as the photo; asking the photo's margin of it as well lost half the gain
+/// render is as grainy as the photo; asking the photo's margin of it as well lost the gain
 /// (measured below).
 ///
 /// Chosen by cross-validation on the development set (offline, from one run's recorded choices
