@@ -195,7 +195,8 @@ pub struct Candidate {
     /// Structure cues of that render ([`crate::cues::cues`]).
     pub cues: [f32; crate::cues::CUES],
     /// The family classifier's squared distances for the candidate's render as the ranking
-    /// rendered it, by class name (`noise` for the noise class; [`crate::retrieve::classify`]).
+    /// rendered it, by class name (`noise` for the noise class; [`crate::retrieve::classify`]);
+    /// empty for a family after the render-ordered ones, which the ranking does not classify.
     pub classifier_distances: std::collections::BTreeMap<String, f64>,
 }
 
@@ -241,12 +242,10 @@ impl PhotoResult {
                 let names: Vec<String> = run.ranking.iter().map(|s| s.name.to_string()).collect();
                 let classes = crate::retrieve::classify(run.source);
                 let nearest = classes.iter().find_map(|(c, _)| *c);
-                // The classes of a candidate's render as the ranking rendered and classified it.
-                let render_classes = |c: &crate::retrieve::Suggestion| {
-                    c.render_classes
-                        .clone()
-                        .expect("every candidate of a full ranking is fitted")
-                };
+                // The classes of a candidate's render as the ranking rendered and classified it
+                // (none for a family after the render-ordered ones: `retrieve::Fit`).
+                let render_classes =
+                    |c: &crate::retrieve::Suggestion| c.render_classes.clone().unwrap_or_default();
                 let noise_render_margin = run
                     .ranking
                     .iter()

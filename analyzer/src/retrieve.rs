@@ -117,7 +117,8 @@ pub struct Suggestion {
     /// fitted yet.
     pub preview: Option<Params>,
     /// The family classifier's classes for that fit's render, as the ranking renders it
-    /// ([`classify`]; [`RENDER_NULL_MARGIN`]); `None` for a family not fitted yet.
+    /// ([`classify`]; [`RENDER_NULL_MARGIN`]); `None` for a family not fitted yet or not
+    /// render-ordered ([`Fit`]).
     pub render_classes: Option<Vec<(Class, f64)>>,
 }
 
@@ -314,12 +315,15 @@ pub struct Suggester {
 }
 
 /// A candidate fitted on the reduced photo: its parameters, the texture distance of their
-/// render to the photo, and the family classifier's classes for that render ([`classify`]).
+/// render to the photo, and the family classifier's classes for that render ([`classify`]):
+/// `None` for a family after [`Suggester::render_ordered`]'s, which cannot come first, so its
+/// render's classes decide nothing ([`RENDER_NULL_MARGIN`] reads the first candidate's) and
+/// would cost a classification per thumbnail.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Fit {
     pub params: Params,
     pub distance: f32,
-    pub render_classes: Vec<(Class, f64)>,
+    pub render_classes: Option<Vec<(Class, f64)>>,
 }
 
 /// A family's pattern after refinement (or its retrieved one), its refined distance (`None`:

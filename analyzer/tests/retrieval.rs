@@ -175,7 +175,11 @@ fn a_family_that_the_noise_models_render_does_not_explain_ranks_first() {
     let nearest = classes.iter().find_map(|(c, _)| *c).expect("a family");
     let noise = Suggester::new(db, &ashlar, &opts, Refinement::default()).fit_noise(db);
     let unexplained = class_margin(&classes, Some(nearest), None)
-        - class_margin(&noise.render_classes, Some(nearest), None);
+        - class_margin(
+            noise.render_classes.as_deref().expect("classified"),
+            Some(nearest),
+            None,
+        );
     assert!(unexplained > RENDER_NULL_MARGIN, "{unexplained}");
     let ranked = rank_with(db, &ashlar, &opts, Refinement::default(), 1, &|_, _| true);
     let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
@@ -291,7 +295,8 @@ fn the_refinement_refines_the_classifiers_first_three_families() {
 
 /// The ranking that fits only the families that decide the order (the browser's worker shows
 /// it first) has the full ranking's order and scores, and each other family fitted afterwards
-/// equals the full ranking's fit, bit for bit.
+/// equals the full ranking's fit, bit for bit; only the candidates that can come first (the
+/// render-ordered ones) have their renders classified.
 #[test]
 fn fitting_the_families_that_order_the_list_alone_gives_the_full_ranking() {
     use proctex::retrieve::{RENDER_ORDERED, Suggester};
@@ -314,5 +319,13 @@ fn fitting_the_families_that_order_the_list_alone_gives_the_full_ranking() {
             s.fit(db, row);
         }
         assert!(first == full, "{name}");
+        for r in &full {
+            assert_eq!(
+                r.render_classes.is_some(),
+                r.render_ordered,
+                "{name}: {}",
+                r.name
+            );
+        }
     }
 }

@@ -265,7 +265,7 @@ impl Suggester {
             skipped: false,
             render_ordered: true,
             preview: Some(noise),
-            render_classes: Some(noise_classes),
+            render_classes: noise_classes,
         };
         let complete = self.pending().is_empty();
         let order = &self.order;
@@ -306,7 +306,7 @@ impl Suggester {
         for (f, fit) in families.iter_mut().zip(fits) {
             f.distance = Some(fit.distance);
             f.preview = Some(fit.params);
-            f.render_classes = Some(fit.render_classes);
+            f.render_classes = fit.render_classes;
         }
         let ordered = ordered.min(families.len());
         let nearest_class = order[..ordered]
@@ -406,7 +406,7 @@ impl Suggester {
         let render = candidate
             .render_classes
             .as_deref()
-            .expect("the first candidate is fitted");
+            .expect("the first candidate is fitted and classified");
         let photo = class_margin(&self.classes, nearest, class);
         let beyond = photo - class_margin(render, nearest, class);
         match class {
@@ -433,17 +433,18 @@ impl Suggester {
     /// The noise model's analysis of the reduced photo, and its fit ([`Suggester::fit_noise`]).
     fn noise_analysis(&self, db: &Db, tile: &Tile) -> (crate::analyze::Analysis, Fit) {
         let analysis = analyze_prepared(&self.small, &self.opts);
-        let fit = self.scored(db, tile, analysis.params.clone());
+        let fit = self.scored(db, tile, analysis.params.clone(), true);
         (analysis, fit)
     }
 
     /// `params` fitted on the reduced photo, rendered as the ranking renders its candidates,
-    /// with its render's texture distance and classes (the one render of a fit).
-    fn scored(&self, db: &Db, tile: &Tile, params: Params) -> Fit {
+    /// with its render's texture distance and, where `classified`, its classes (the one render
+    /// of a fit).
+    fn scored(&self, db: &Db, tile: &Tile, params: Params, classified: bool) -> Fit {
         let img = ranking_render(&self.tt, &params, tile);
         Fit {
             distance: render_distance(db, &self.tt, &self.q, &img),
-            render_classes: classify(&img),
+            render_classes: classified.then(|| classify(&img)),
             params,
         }
     }
@@ -470,7 +471,7 @@ impl Suggester {
         let fit = self.fit_family(db, &Tile::new_2d(self.opts.seed), s.name);
         s.distance = Some(fit.distance);
         s.preview = Some(fit.params);
-        s.render_classes = Some(fit.render_classes);
+        s.render_classes = fit.render_classes;
     }
 
     /// Family `name`'s refined pattern fitted on the reduced photo, and its texture distance.
@@ -490,6 +491,8 @@ impl Suggester {
         let mut p = p.clone();
         p.scale *= self.per_px;
         let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, tile).params;
-        self.scored(db, tile, fitted)
+        // Only a render-ordered family can come first, where its render's classes count.
+        let ordered = &self.order[..RENDER_ORDERED.min(self.order.len())];
+        self.scored(db, tile, fitted, ordered.contains(&i))
     }
 }
