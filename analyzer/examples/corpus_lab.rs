@@ -19,6 +19,10 @@
 //!   within-class variance instead of their mean (the same as standardising the features);
 //!   `CORPUS_LAB_NO_LINES=1` zeroes the two straight-line cues (the cues' costliest).
 //!   `CORPUS_LAB_AUG=half` also trains on each texture's quadrants at half its size.
+//!   `CORPUS_LAB_KNN=K` measures each class's distance as the mean squared distance to its K
+//!   nearest training views in the discriminant's space instead of to its mean. With
+//!   `CORPUS_LAB_DUMP=1` each line also has the patch's margin (the noise class's distance minus
+//!   the nearest family's).
 //!   `CORPUS_LAB_DEV_FOLDS=K` scores each development photo with a discriminant trained on the
 //!   corpus and on the development photos of the other K − 1 folds by photo (their manifest's
 //!   first family as the label): what the development photos would add as training textures.
@@ -242,13 +246,33 @@ impl Classifier {
     /// Each present class's squared distance to the query's projection (the nearer tone
     /// orientation), as the product's `class_distances` measures it.
     fn distances(&self, d: &Descriptor) -> Vec<f64> {
+        let knn: usize = std::env::var("CORPUS_LAB_KNN")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0);
         let score = |d: &Descriptor| {
-            scores(
-                &self.model,
-                &project(&self.model.proj, &lab_features(d, self.harmonics)),
-                self.present.len(),
-                0,
-            )
+            let y = project(&self.model.proj, &lab_features(d, self.harmonics));
+            if knn == 0 {
+                return scores(&self.model, &y, self.present.len(), 0);
+            }
+            // Each class's mean squared distance to its `knn` nearest training views.
+            let mut by_class = vec![Vec::new(); self.present.len()];
+            for (p, c) in &self.model.points {
+                by_class[*c].push(
+                    p.iter()
+                        .zip(&y)
+                        .map(|(a, b)| (a - b) * (a - b))
+                        .sum::<f64>(),
+                );
+            }
+            by_class
+                .into_iter()
+                .map(|mut ds| {
+                    ds.sort_by(f64::total_cmp);
+                    let k = knn.min(ds.len()).max(1);
+                    ds[..k].iter().sum::<f64>() / k as f64
+                })
+                .collect()
         };
         let (a, b) = (score(d), score(&d.swapped()));
         a.iter().zip(&b).map(|(x, y)| x.min(*y)).collect()
@@ -531,7 +555,17 @@ fn eval(labels: &str, dir: &str, dev: &str) {
         let labelled = |k: usize| p.labels.iter().any(|l| l == name(k));
         if std::env::var("CORPUS_LAB_DUMP").is_ok() {
             let ranked: Vec<&str> = order.iter().map(|&k| name(k)).collect();
-            eprintln!("dump\t{}\t{}", p.file, ranked.join(","));
+            // The photo's margin: the noise class's distance minus the nearest family's.
+            let ds = c.distances(d);
+            let at = |k: usize| ds[c.present.iter().position(|&q| q == k).unwrap()];
+            let fam = *order.iter().find(|&&k| k != noise).unwrap();
+            eprintln!(
+                "dump\t{}\t{}\t{}\t{}",
+                p.file,
+                p.structured,
+                ranked.join(","),
+                at(noise) - at(fam)
+            );
         }
         if p.structured {
             ns += 1;
