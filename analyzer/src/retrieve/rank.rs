@@ -492,7 +492,6 @@ impl Suggester {
         p.scale *= self.per_px;
         let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, tile).params;
         // Only a render-ordered family can come first, where its render's classes count.
-        let ordered = &self.order[..RENDER_ORDERED.min(self.order.len())];
-        self.scored(db, tile, fitted, ordered.contains(&i))
+        self.scored(db, tile, fitted, self.render_ordered().contains(&i))
     }
 }
