@@ -76,8 +76,25 @@ fn octave(q: vec3<f32>, k: u32, per: vec2<f32>) -> f32 {
     return noise2(vec2<f32>(q.x * f + o.x, q.y * f + o.y)).x;
 }
 
-// The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or exp(−sharpness·|n|) (2,
-// ridged).
+// The mean magnitude of a noise octave's gradient per noise coefficient (Rust: NOISE_GRADIENT).
+const NOISE_GRADIENT: f32 = 2.2;
+
+// A ridged octave's crest exp(−sharpness·|n|) as a pixel shows it (Rust: crest): at least a pixel
+// wide, averaged over the noise's change across the pixel; lfp the log2 of the pixel's footprint
+// in the octave's noise coefficients.
+fn crest(n: f32, sharpness: f32, lfp: f32) -> f32 {
+    let g = NOISE_GRADIENT * exp2(lfp);
+    let s = min(sharpness, 2.0 / g);
+    let h = 0.5 * g;
+    if (s * h < 1e-3) {
+        return exp(-s * abs(n));
+    }
+    let hi = sign(n + h) * (1.0 - exp(-s * abs(n + h))) / s;
+    let lo = sign(n - h) * (1.0 - exp(-s * abs(n - h))) / s;
+    return (hi - lo) / (2.0 * h);
+}
+
+// The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or its crest (2, ridged).
 fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32, per: vec2<f32>) -> f32 {
     var sum = 0.0;
     var norm = 0.0;
@@ -90,7 +107,7 @@ fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32, per: ve
             if (mode == 1u) {
                 v = abs(n);
             } else if (mode == 2u) {
-                v = exp(-sharpness * abs(n));
+                v = crest(n, sharpness, lfp + f32(k));
             }
             sum += amp * fade * v;
         }

@@ -76,8 +76,25 @@ float octave(vec3 q, uint k, vec2 per) {
 #endif
 }
 
-// The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or exp(-sharpness*|n|) (2,
-// ridged).
+// The mean magnitude of a noise octave's gradient per noise coefficient (Rust: NOISE_GRADIENT).
+const float NOISE_GRADIENT = 2.2;
+
+// A ridged octave's crest exp(-sharpness*|n|) as a pixel shows it (Rust: crest): at least a pixel
+// wide, averaged over the noise's change across the pixel; lfp the log2 of the pixel's footprint
+// in the octave's noise coefficients.
+float crest(float n, float sharpness, float lfp) {
+    float g = NOISE_GRADIENT * exp2(lfp);
+    float s = min(sharpness, 2.0 / g);
+    float h = 0.5 * g;
+    if (s * h < 1e-3) {
+        return exp(-s * abs(n));
+    }
+    float hi = sign(n + h) * (1.0 - exp(-s * abs(n + h))) / s;
+    float lo = sign(n - h) * (1.0 - exp(-s * abs(n - h))) / s;
+    return (hi - lo) / (2.0 * h);
+}
+
+// The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or its crest (2, ridged).
 float octaves(vec3 q, float gain, uint mode, float sharpness, float lfp, vec2 per) {
     float sum = 0.0;
     float norm = 0.0;
@@ -90,7 +107,7 @@ float octaves(vec3 q, float gain, uint mode, float sharpness, float lfp, vec2 pe
             if (mode == 1u) {
                 v = abs(n);
             } else if (mode == 2u) {
-                v = exp(-sharpness * abs(n));
+                v = crest(n, sharpness, lfp + float(k));
             }
             sum += amp * fade * v;
         }
