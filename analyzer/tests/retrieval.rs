@@ -19,7 +19,10 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the ranking last changed: 165 of 432 (38.2 %) since the
+/// The rate measured on all 432 cases when the ranking last changed: 157 of 432 (36.3 %) since
+/// ridged's crests are drawn at least a pixel wide and averaged over it (`render::pattern::crest`:
+/// ridged 30 → 21 of 48, most of the others to wood lines; on the development set's photos the
+/// speck-clean renders 184 → 198 of 208); 165 (38.2 %) since the
 /// classifier's nearest family comes first where a family's own render does not explain the
 /// photo's margin as well as where the noise model's does not (`retrieve::RENDER_NULL_MARGIN`;
 /// brick 30 → 23 of 48, planks 38 → 31, wood lines 37 → 33: on bare patterns the classifier,
@@ -42,7 +45,7 @@ const QUICK_STRIDE: usize = 3;
 /// texture, 259 (266 with the third batch; not kept: the benchmarks' brick crop lost its family
 /// and its speed). The test guards against a regression: the rate plus two
 /// standard errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
-const MEASURED_RATE: f32 = 165.0 / 432.0;
+const MEASURED_RATE: f32 = 157.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
