@@ -128,12 +128,13 @@ pub const NOISE_GRADIENT: f32 = 2.2;
 ///
 /// Why: a fine octave's crest is a tenth of a pixel wide or less; sampled at the pixel centre
 /// it drew a dotted line at full contrast, isolated dark pixels that photos of cracks do not
-/// have (the development set's ridged renders were over its speck limit on 17 of the 24
-/// chosen renders that were). Measured on the development set (`proctex fidelity`, every
-/// quadrant; docs/devset.md): speck-clean chosen renders 184 → 198 of 208 with both, 188 with
-/// the floor alone, 188 with the average alone; 4 folds by photo all chose both (held out
-/// 198), structured labelled 69 → 68. The average alone makes fine crests faint, the floor
-/// alone leaves them dotted at `1/e`.
+/// have (17 of the development set's 24 chosen renders over the speck limit were ridged).
+/// Measured on the development set (`proctex fidelity`, every quadrant; docs/devset.md):
+/// speck-clean chosen renders 184 → 198 of 208 with both, 188 with the floor alone, 188 with
+/// the average alone; 4 folds by photo all chose both (held out 198), structured labelled
+/// 69 → 68. The average alone makes fine crests faint, the floor alone leaves them dotted at
+/// `1/e`. On 67 structured textures never tuned on: speck-clean 215 → 227 of 268 quadrants,
+/// labelled 168 → 161 (antialiased crests come nearer to some stone floors than cells do).
 #[inline]
 pub fn crest(n: f32, sharpness: f32, lfp: f32) -> f32 {
     let g = NOISE_GRADIENT * lfp.exp2();
