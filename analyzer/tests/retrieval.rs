@@ -252,8 +252,8 @@ fn the_noise_model_chosen_on_a_small_photo_is_its_own_analysis() {
 /// The refinement refines the classifier's first three families, whose fits order the list, and
 /// no other (each marked skipped); they are the list's fitted families, the best by score first
 /// (or the classifier's nearest family, where the first candidate's render does not explain the
-/// photo's margin for it: on the stone bricks' quadrant, the noise model's) and the others in the classifier's order, with
-/// the noise model first or right after them.
+/// photo's margin for it: on the stone bricks' quadrant, the noise model's) and the others in
+/// the classifier's order, with the noise model first or right after them.
 #[test]
 fn the_refinement_refines_the_classifiers_first_three_families() {
     use proctex::cues::dark_skewness;
