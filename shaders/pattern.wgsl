@@ -124,6 +124,48 @@ fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32, per: ve
     return sum / norm;
 }
 
+// The lines' profile (½ + ½ sin 2πv)^sharpness as a pixel shows it (Rust: line_profile): the
+// sharpness bounded so that a line is at least a pixel wide, averaged over v ± g/2 (g the change
+// of v across the pixel) on four points.
+fn line_profile(v: f32, sharpness: f32, g_in: f32) -> f32 {
+    let g = max(g_in, 1e-6);
+    let s = min(sharpness, 4.0 / (3.1415927 * 3.1415927 * g * g));
+    if (g < 1e-4) {
+        return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), s);
+    }
+    var sum = 0.0;
+    for (var i = 0u; i < 4u; i++) {
+        let x = v + (0.25 * f32(i) - 0.375) * g;
+        sum += pow(max(0.5 + 0.5 * sin(6.2831855 * x), 1e-6), s);
+    }
+    return 0.25 * sum;
+}
+
+// How much a coordinate changes across a pixel (Rust: pixel_change): forward differences.
+fn pixel_change(at: f32, ax: f32, ay: f32) -> f32 {
+    let dx = ax - at;
+    let dy = ay - at;
+    return sqrt(dx * dx + dy * dy);
+}
+
+// The wood lines' coordinate at pattern point q (Rust: wood_line_coordinate).
+fn wood_line_coordinate(q: vec3<f32>, lfp: f32, per: vec2<f32>) -> f32 {
+    let w0 = params.pattern_values[0];
+    let n = octaves(
+        vec3<f32>(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0, lfp - 2.0, per,
+    );
+    return q.y + w0.y * n;
+}
+
+// The rings' coordinate at point p from their centre (Rust: ring_coordinate).
+fn ring_coordinate(p: vec3<f32>, lfp: f32, per: vec2<f32>) -> f32 {
+    let w0 = params.pattern_values[0];
+    let n = octaves(
+        vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0, 0.25 * per,
+    );
+    return sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
+}
+
 fn joint_distance(fx: f32, fy: f32, aspect: f32) -> f32 {
     return min(min(fx, 1.0 - fx) * aspect, min(fy, 1.0 - fy));
 }
@@ -252,11 +294,10 @@ fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
         // wood lines: stretch, distortion, sharpness, roughness
         case 8u: {
             let per = vec2<f32>(0.25 * wrap.x / w0.x, 0.25 * wrap.y);
-            let n = octaves(
-                vec3<f32>(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0, lfp - 2.0, per,
-            );
-            let v = q.y + w0.y * n;
-            return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), w0.z);
+            let v = wood_line_coordinate(q, lfp, per);
+            let vx = wood_line_coordinate(q + vec3<f32>(soft, 0.0, 0.0), lfp, per);
+            let vy = wood_line_coordinate(q + vec3<f32>(0.0, soft, 0.0), lfp, per);
+            return line_profile(v, w0.z, pixel_change(v, vx, vy));
         }
         // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y; with wrap, the
         // torus distance to the centre
@@ -268,11 +309,10 @@ fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
                 p.x -= per.x * floor(p.x / per.x + 0.5);
                 p.y -= per.y * floor(p.y / per.y + 0.5);
             }
-            let n = octaves(
-                vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0, 0.25 * per,
-            );
-            let r = sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
-            return pow(max(0.5 + 0.5 * sin(6.2831855 * r), 1e-6), w0.y);
+            let r = ring_coordinate(p, lfp, per);
+            let rx = ring_coordinate(p + vec3<f32>(soft / w0.w, 0.0, 0.0), lfp, per);
+            let ry = ring_coordinate(p + vec3<f32>(0.0, soft, 0.0), lfp, per);
+            return line_profile(r, w0.y, pixel_change(r, rx, ry));
         }
         default: {
             return 0.0;

@@ -124,6 +124,46 @@ float octaves(vec3 q, float gain, uint mode, float sharpness, float lfp, vec2 pe
     return sum / norm;
 }
 
+// The lines' profile (1/2 + 1/2 sin 2 pi v)^sharpness as a pixel shows it (Rust: line_profile):
+// the sharpness bounded so that a line is at least a pixel wide, averaged over v +- g/2 (g the
+// change of v across the pixel) on four points.
+float line_profile(float v, float sharpness, float g_in) {
+    float g = max(g_in, 1e-6);
+    float s = min(sharpness, 4.0 / (3.1415927 * 3.1415927 * g * g));
+    if (g < 1e-4) {
+        return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), s);
+    }
+    float sum = 0.0;
+    for (uint i = 0u; i < 4u; i++) {
+        float x = v + (0.25 * float(i) - 0.375) * g;
+        sum += pow(max(0.5 + 0.5 * sin(6.2831855 * x), 1e-6), s);
+    }
+    return 0.25 * sum;
+}
+
+// How much a coordinate changes across a pixel (Rust: pixel_change): forward differences.
+float pixel_change(float at, float ax, float ay) {
+    float dx = ax - at;
+    float dy = ay - at;
+    return sqrt(dx * dx + dy * dy);
+}
+
+// The wood lines' coordinate at pattern point q (Rust: wood_line_coordinate).
+float wood_line_coordinate(vec3 q, float lfp, vec2 per) {
+    vec4 w0 = params.pattern_values[0];
+    float n = octaves(vec3(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0,
+        lfp - 2.0, per);
+    return q.y + w0.y * n;
+}
+
+// The rings' coordinate at point p from their centre (Rust: ring_coordinate).
+float ring_coordinate(vec3 p, float lfp, vec2 per) {
+    vec4 w0 = params.pattern_values[0];
+    float n = octaves(vec3(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0,
+        0.25 * per);
+    return sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
+}
+
 float joint_distance(float fx, float fy, float aspect) {
     return min(min(fx, 1.0 - fx) * aspect, min(fy, 1.0 - fy));
 }
@@ -254,10 +294,10 @@ float pattern_at(vec3 q, float lfp, vec2 wrap) {
     case 8u: {
         // wood lines: stretch, distortion, sharpness, roughness
         vec2 per = vec2(0.25 * wrap.x / w0.x, 0.25 * wrap.y);
-        float n = octaves(vec3(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0,
-            lfp - 2.0, per);
-        float v = q.y + w0.y * n;
-        return pow(max(0.5 + 0.5 * sin(6.2831855 * v), 1e-6), w0.z);
+        float v = wood_line_coordinate(q, lfp, per);
+        float vx = wood_line_coordinate(q + vec3(soft, 0.0, 0.0), lfp, per);
+        float vy = wood_line_coordinate(q + vec3(0.0, soft, 0.0), lfp, per);
+        return line_profile(v, w0.z, pixel_change(v, vx, vy));
     }
     case 9u: {
         // rings: distortion, sharpness, roughness, stretch, centre_x, centre_y; with wrap, the
@@ -269,10 +309,10 @@ float pattern_at(vec3 q, float lfp, vec2 wrap) {
             p.x -= per.x * floor(p.x / per.x + 0.5);
             p.y -= per.y * floor(p.y / per.y + 0.5);
         }
-        float n = octaves(vec3(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0,
-            0.25 * per);
-        float r = sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
-        return pow(max(0.5 + 0.5 * sin(6.2831855 * r), 1e-6), w0.y);
+        float r = ring_coordinate(p, lfp, per);
+        float rx = ring_coordinate(p + vec3(soft / w0.w, 0.0, 0.0), lfp, per);
+        float ry = ring_coordinate(p + vec3(0.0, soft, 0.0), lfp, per);
+        return line_profile(r, w0.y, pixel_change(r, rx, ry));
     }
     default:
         return 0.0;
