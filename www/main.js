@@ -583,6 +583,9 @@ window.proctex = {
   // the cores beyond the worker's and the page's, at most 3), to time refinement with and
   // without them in one run; `script` (tests) starts them from another script URL.
   setRefineHelpers: (n, script) => worker.postMessage({ type: 'setHelpers', n, script }),
+  // e2e: each round of the pyramid and solid syntheses waits `ms` first (0: none), so that a
+  // test can press Cancel between rounds however fast the machine runs them.
+  setSynthesisRoundDelay: (ms) => worker.postMessage({ type: 'setRoundDelay', ms }),
 };
 
 // Without WebGPU: say so in plain words, and keep the inputs working: every photo opened,

@@ -668,7 +668,7 @@ async function runRounds(id, job, t0, result) {
     postMessage({ type: 'pyramidProgress', id, done: 0, total: job.steps() });
     let more = job.steps() > 0;
     while (more) {
-      await new Promise((r) => setTimeout(r, 0));
+      await new Promise((r) => setTimeout(r, roundDelayMs));
       if (mine.cancelled) {
         postMessage({ type: 'pyramid', id, cancelled: true });
         return;
@@ -684,6 +684,10 @@ async function runRounds(id, job, t0, result) {
     if (pyramid === mine) pyramid = null;
   }
 }
+
+// e2e: milliseconds each synthesis round waits before it runs ('setRoundDelay'; 0 by default),
+// so that a test can press Cancel between rounds however fast the machine runs them.
+let roundDelayMs = 0;
 
 // The running synthesis ({ id, cancelled }), for 'cancelPyramid'; the ids of queued ones
 // cancelled before they started.
@@ -707,6 +711,10 @@ onmessage = (e) => {
   if (m.type === 'setRefineBudget') {
     refineBudgetMs = Math.max(0, Number(m.seconds) || 0) * 1000;
     if (suggestion) armBudget(suggestion);
+    return;
+  }
+  if (m.type === 'setRoundDelay') {
+    roundDelayMs = Math.max(0, Number(m.ms) || 0);
     return;
   }
   if (m.type === 'cancelPyramid') {

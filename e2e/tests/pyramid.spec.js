@@ -73,6 +73,9 @@ test('the pyramid view synthesises the sample, and a dropped photo again', async
 
 test('Cancel stops the pyramid synthesis, and it can run again', async ({ page }) => {
   await openApp(page, { view: VIEW });
+  // Rounds slowed down so that Cancel lands between them: on a fast machine the whole
+  // synthesis could otherwise end before the click.
+  await page.evaluate(() => window.proctex.setSynthesisRoundDelay(250));
   await clickWidget(page, 'mode.pyramid');
   // Cancel as soon as the first rounds are reported.
   await page.waitForFunction(() => {
@@ -94,6 +97,7 @@ test('Cancel stops the pyramid synthesis, and it can run again', async ({ page }
   await page.waitForTimeout(500);
   s = await state(page);
   expect(s.pyramid.running).toBe(false);
+  await page.evaluate(() => window.proctex.setSynthesisRoundDelay(0));
   await clickWidget(page, 'pyramid.again');
   await waitSyntheses(page, 1);
   await expectSynthesisOfPhoto(page);
