@@ -73,7 +73,9 @@ def main():
           "top three {top3}, served {served}".format(**held))
     for name, c in variants:
         print(f"  {name}: whole set speck-clean {sum(c['speck'])} (folds {c['speck']}), "
-              f"every render {sum(c['every'])} (folds {c['every']}), labelled {sum(c['labelled'])}, top three {sum(c['top3'])}, served {sum(c['served'])}")
+              f"every render {sum(c['every'])} (folds {c['every']}), "
+              f"labelled {sum(c['labelled'])}, top three {sum(c['top3'])}, "
+              f"served {sum(c['served'])}")
 
 
 if __name__ == "__main__":
