@@ -76,15 +76,10 @@ fn octave(q: vec3<f32>, k: u32, per: vec2<f32>) -> f32 {
     return noise2(vec2<f32>(q.x * f + o.x, q.y * f + o.y)).x;
 }
 
-// The mean magnitude of a noise octave's gradient per noise coefficient (Rust: NOISE_GRADIENT).
-const NOISE_GRADIENT: f32 = 2.2;
-
 // A ridged octave's crest exp(−sharpness·|n|) as a pixel shows it (Rust: crest): at least a pixel
-// wide, averaged over the noise's change across the pixel; lfp the log2 of the pixel's footprint
-// in the octave's noise coefficients.
-fn crest(n: f32, sharpness: f32, lfp: f32) -> f32 {
-    let g = NOISE_GRADIENT * exp2(lfp);
-    let s = min(sharpness, 2.0 / g);
+// wide, averaged over n ± g/2, g the noise's change across the pixel.
+fn crest(n: f32, sharpness: f32, g: f32) -> f32 {
+    let s = min(sharpness, 2.0 / max(g, 1e-6));
     let h = 0.5 * g;
     if (s * h < 1e-3) {
         return exp(-s * abs(n));
@@ -94,8 +89,8 @@ fn crest(n: f32, sharpness: f32, lfp: f32) -> f32 {
     return (hi - lo) / (2.0 * h);
 }
 
-// The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or its crest (2, ridged).
-fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32, per: vec2<f32>) -> f32 {
+// The octaves summed: n (mode 0, fractal noise) or |n| (1, turbulence) (Rust: octaves).
+fn octaves(q: vec3<f32>, gain: f32, mode: u32, lfp: f32, per: vec2<f32>) -> f32 {
     var sum = 0.0;
     var norm = 0.0;
     var amp = 1.0;
@@ -106,8 +101,6 @@ fn octaves(q: vec3<f32>, gain: f32, mode: u32, sharpness: f32, lfp: f32, per: ve
             var v = n;
             if (mode == 1u) {
                 v = abs(n);
-            } else if (mode == 2u) {
-                v = crest(n, sharpness, lfp + f32(k));
             }
             sum += amp * fade * v;
         }
@@ -148,11 +141,33 @@ fn pixel_change(at: f32, ax: f32, ay: f32) -> f32 {
     return sqrt(dx * dx + dy * dy);
 }
 
+// Ridged's octaves: each octave's crest over the noise's change across the pixel where it is,
+// forward differences one pixel step along the pattern's axes (Rust: ridged_octaves).
+fn ridged_octaves(
+    q: vec3<f32>, pixel_step: vec2<f32>, gain: f32, sharpness: f32, lfp: f32, per: vec2<f32>,
+) -> f32 {
+    var sum = 0.0;
+    var norm = 0.0;
+    var amp = 1.0;
+    for (var k = 0u; k < PATTERN_OCTAVES; k++) {
+        let fade = band_fade(0u, lfp + f32(k));
+        if (fade > 0.0) {
+            let n = octave(q, k, per);
+            let nx = octave(vec3<f32>(q.x + pixel_step.x, q.y, q.z), k, per);
+            let ny = octave(vec3<f32>(q.x, q.y + pixel_step.y, q.z), k, per);
+            sum += amp * fade * crest(n, sharpness, pixel_change(n, nx, ny));
+        }
+        norm += amp;
+        amp *= gain;
+    }
+    return sum / norm;
+}
+
 // The wood lines' coordinate at pattern point q (Rust: wood_line_coordinate).
 fn wood_line_coordinate(q: vec3<f32>, lfp: f32, per: vec2<f32>) -> f32 {
     let w0 = params.pattern_values[0];
     let n = octaves(
-        vec3<f32>(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0, lfp - 2.0, per,
+        vec3<f32>(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, lfp - 2.0, per,
     );
     return q.y + w0.y * n;
 }
@@ -161,7 +176,7 @@ fn wood_line_coordinate(q: vec3<f32>, lfp: f32, per: vec2<f32>) -> f32 {
 fn ring_coordinate(p: vec3<f32>, lfp: f32, per: vec2<f32>) -> f32 {
     let w0 = params.pattern_values[0];
     let n = octaves(
-        vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0, 0.25 * per,
+        vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, lfp - 2.0, 0.25 * per,
     );
     return sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
 }
@@ -191,19 +206,21 @@ fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
         // perlin: stretch, roughness, contrast, threshold
         case 1u: {
             let per = vec2<f32>(wrap.x / w0.x, wrap.y);
-            let n = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 0u, 0.0, lfp, per);
+            let n = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 0u, lfp, per);
             return 1.0 / (1.0 + exp(-w0.z * (n - w0.w)));
         }
         // turbulence: stretch, roughness, contrast
         case 2u: {
             let per = vec2<f32>(wrap.x / w0.x, wrap.y);
-            let t = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 1u, 0.0, lfp, per);
+            let t = octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 1u, lfp, per);
             return 1.0 - exp(-w0.z * t);
         }
         // ridged: stretch, roughness, sharpness
         case 3u: {
             let per = vec2<f32>(wrap.x / w0.x, wrap.y);
-            return octaves(vec3<f32>(q.x / w0.x, q.y, q.z), w0.y, 2u, w0.z, lfp, per);
+            let pixel_step = vec2<f32>(soft / w0.x, soft);
+            let stretched = vec3<f32>(q.x / w0.x, q.y, q.z);
+            return ridged_octaves(stretched, pixel_step, w0.y, w0.z, lfp, per);
         }
         // grid: aspect, mortar, bevel, variation
         case 4u: {
@@ -240,9 +257,9 @@ fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
             if (w1.z > 0.0) {
                 let per = vec2<f32>(0.25 * wrap.x / w1.x, 0.25 * wrap.y);
                 let b = vec3<f32>(0.25 * p.x, 0.25 * p.y, 0.25 * q.z);
-                let gx = octaves(b, 0.5, 0u, 0.0, lfp - 2.0, per);
+                let gx = octaves(b, 0.5, 0u, lfp - 2.0, per);
                 let b2 = vec3<f32>(b.x + WARP_OFFSET, b.y, b.z);
-                let gy = octaves(b2, 0.5, 0u, 0.0, lfp - 2.0, per);
+                let gy = octaves(b2, 0.5, 0u, lfp - 2.0, per);
                 p = vec2<f32>(p.x + w1.z * gx, p.y + w1.z * gy);
             }
             let iy = floor(p.y);
@@ -286,7 +303,7 @@ fn pattern_at(q: vec3<f32>, lfp: f32, wrap: vec2<f32>) -> f32 {
             let fx = x - ix;
             let d = min(min(fx, 1.0 - fx) * w0.x, min(q.y - r.y, r.z - q.y));
             let per = vec2<f32>(wrap.x * 0.125, wrap.y * 4.0);
-            let g = octaves(vec3<f32>(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0, per);
+            let g = octaves(vec3<f32>(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, lfp + 2.0, per);
             let shade = (1.0 - w0.w * cell_hash_wrapped(i32(ix), i32(iy), 0u, n))
                 * (1.0 - w1.x * (0.5 + 0.5 * tanh(g)));
             return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;

@@ -26,9 +26,15 @@ pub const SPECK_DEVIATIONS: f32 = 4.0;
 /// judged (a line that leaves the image would look like one), only counted in the fraction's
 /// denominator.
 pub fn speck_fraction(p: &Photo) -> f64 {
+    let mask = speck_mask(p);
+    mask.iter().filter(|&&s| s).count() as f64 / mask.len().max(1) as f64
+}
+
+/// Which of `p`'s pixels (row by row) are specks, as [`speck_fraction`] counts them.
+pub fn speck_mask(p: &Photo) -> Vec<bool> {
     let (w, h) = (p.width as usize, p.height as usize);
     if w < 3 || h < 3 {
-        return 0.0;
+        return vec![false; w * h];
     }
     let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round();
     let neighbours = |x: usize, y: usize| {
@@ -83,7 +89,7 @@ pub fn speck_fraction(p: &Photo) -> f64 {
             }
         }
     }
-    speck.iter().filter(|&&s| s).count() as f64 / (w * h) as f64
+    speck
 }
 
 #[cfg(test)]

@@ -19,8 +19,10 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the ranking last changed: 158 of 432 (36.6 %) since
-/// wood lines and rings are drawn at least a pixel wide and averaged over it
+/// The rate measured on all 432 cases when the ranking last changed: 164 of 432 (38.0 %) since
+/// ridged's crests are drawn over the noise's change where the pixel is
+/// (`render::pattern::ridged_octaves`: ridged 21 → 25 of 48, cells 23 → 24, planks 31 → 32);
+/// 158 (36.6 %) since wood lines and rings are drawn at least a pixel wide and averaged over it
 /// (`render::pattern::line_profile`: wood lines 33 → 34 of 48); 157 (36.3 %) since
 /// ridged's crests are drawn at least a pixel wide and averaged over it (`render::pattern::crest`:
 /// ridged 30 → 21 of 48, most of the others to wood lines; on the development set's photos the
@@ -47,7 +49,7 @@ const QUICK_STRIDE: usize = 3;
 /// texture, 259 (266 with the third batch; not kept: the benchmarks' brick crop lost its family
 /// and its speed). The test guards against a regression: the rate plus two
 /// standard errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
-const MEASURED_RATE: f32 = 158.0 / 432.0;
+const MEASURED_RATE: f32 = 164.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {

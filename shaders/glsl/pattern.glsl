@@ -76,15 +76,10 @@ float octave(vec3 q, uint k, vec2 per) {
 #endif
 }
 
-// The mean magnitude of a noise octave's gradient per noise coefficient (Rust: NOISE_GRADIENT).
-const float NOISE_GRADIENT = 2.2;
-
 // A ridged octave's crest exp(-sharpness*|n|) as a pixel shows it (Rust: crest): at least a pixel
-// wide, averaged over the noise's change across the pixel; lfp the log2 of the pixel's footprint
-// in the octave's noise coefficients.
-float crest(float n, float sharpness, float lfp) {
-    float g = NOISE_GRADIENT * exp2(lfp);
-    float s = min(sharpness, 2.0 / g);
+// wide, averaged over n +- g/2, g the noise's change across the pixel.
+float crest(float n, float sharpness, float g) {
+    float s = min(sharpness, 2.0 / max(g, 1e-6));
     float h = 0.5 * g;
     if (s * h < 1e-3) {
         return exp(-s * abs(n));
@@ -94,8 +89,8 @@ float crest(float n, float sharpness, float lfp) {
     return (hi - lo) / (2.0 * h);
 }
 
-// The octaves summed: n (mode 0, fractal noise), |n| (1, turbulence) or its crest (2, ridged).
-float octaves(vec3 q, float gain, uint mode, float sharpness, float lfp, vec2 per) {
+// The octaves summed: n (mode 0, fractal noise) or |n| (1, turbulence) (Rust: octaves).
+float octaves(vec3 q, float gain, uint mode, float lfp, vec2 per) {
     float sum = 0.0;
     float norm = 0.0;
     float amp = 1.0;
@@ -106,8 +101,6 @@ float octaves(vec3 q, float gain, uint mode, float sharpness, float lfp, vec2 pe
             float v = n;
             if (mode == 1u) {
                 v = abs(n);
-            } else if (mode == 2u) {
-                v = crest(n, sharpness, lfp + float(k));
             }
             sum += amp * fade * v;
         }
@@ -148,10 +141,30 @@ float pixel_change(float at, float ax, float ay) {
     return sqrt(dx * dx + dy * dy);
 }
 
+// Ridged's octaves: each octave's crest over the noise's change across the pixel where it is,
+// forward differences one pixel step along the pattern's axes (Rust: ridged_octaves).
+float ridged_octaves(vec3 q, vec2 pixel_step, float gain, float sharpness, float lfp, vec2 per) {
+    float sum = 0.0;
+    float norm = 0.0;
+    float amp = 1.0;
+    for (uint k = 0u; k < PATTERN_OCTAVES; k++) {
+        float fade = band_fade(0u, lfp + float(k));
+        if (fade > 0.0) {
+            float n = octave(q, k, per);
+            float nx = octave(vec3(q.x + pixel_step.x, q.y, q.z), k, per);
+            float ny = octave(vec3(q.x, q.y + pixel_step.y, q.z), k, per);
+            sum += amp * fade * crest(n, sharpness, pixel_change(n, nx, ny));
+        }
+        norm += amp;
+        amp *= gain;
+    }
+    return sum / norm;
+}
+
 // The wood lines' coordinate at pattern point q (Rust: wood_line_coordinate).
 float wood_line_coordinate(vec3 q, float lfp, vec2 per) {
     vec4 w0 = params.pattern_values[0];
-    float n = octaves(vec3(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u, 0.0,
+    float n = octaves(vec3(0.25 * q.x / w0.x, 0.25 * q.y, 0.25 * q.z), w0.w, 0u,
         lfp - 2.0, per);
     return q.y + w0.y * n;
 }
@@ -159,7 +172,7 @@ float wood_line_coordinate(vec3 q, float lfp, vec2 per) {
 // The rings' coordinate at point p from their centre (Rust: ring_coordinate).
 float ring_coordinate(vec3 p, float lfp, vec2 per) {
     vec4 w0 = params.pattern_values[0];
-    float n = octaves(vec3(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, 0.0, lfp - 2.0,
+    float n = octaves(vec3(0.25 * p.x, 0.25 * p.y, 0.25 * p.z), w0.z, 0u, lfp - 2.0,
         0.25 * per);
     return sqrt(p.x * p.x + p.y * p.y) + w0.x * n;
 }
@@ -191,19 +204,20 @@ float pattern_at(vec3 q, float lfp, vec2 wrap) {
     case 1u: {
         // perlin: stretch, roughness, contrast, threshold
         vec2 per = vec2(wrap.x / w0.x, wrap.y);
-        float n = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 0u, 0.0, lfp, per);
+        float n = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 0u, lfp, per);
         return 1.0 / (1.0 + exp(-w0.z * (n - w0.w)));
     }
     case 2u: {
         // turbulence: stretch, roughness, contrast
         vec2 per = vec2(wrap.x / w0.x, wrap.y);
-        float t = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 1u, 0.0, lfp, per);
+        float t = octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 1u, lfp, per);
         return 1.0 - exp(-w0.z * t);
     }
     case 3u: {
         // ridged: stretch, roughness, sharpness
         vec2 per = vec2(wrap.x / w0.x, wrap.y);
-        return octaves(vec3(q.x / w0.x, q.y, q.z), w0.y, 2u, w0.z, lfp, per);
+        return ridged_octaves(vec3(q.x / w0.x, q.y, q.z), vec2(soft / w0.x, soft), w0.y, w0.z,
+            lfp, per);
     }
     case 4u: {
         // grid: aspect, mortar, bevel, variation
@@ -240,9 +254,9 @@ float pattern_at(vec3 q, float lfp, vec2 wrap) {
         if (w1.z > 0.0) {
             vec2 per = vec2(0.25 * wrap.x / w1.x, 0.25 * wrap.y);
             vec3 b = vec3(0.25 * p.x, 0.25 * p.y, 0.25 * q.z);
-            float gx = octaves(b, 0.5, 0u, 0.0, lfp - 2.0, per);
+            float gx = octaves(b, 0.5, 0u, lfp - 2.0, per);
             vec3 b2 = vec3(b.x + WARP_OFFSET, b.y, b.z);
-            float gy = octaves(b2, 0.5, 0u, 0.0, lfp - 2.0, per);
+            float gy = octaves(b2, 0.5, 0u, lfp - 2.0, per);
             p = vec2(p.x + w1.z * gx, p.y + w1.z * gy);
         }
         float iy = floor(p.y);
@@ -286,7 +300,7 @@ float pattern_at(vec3 q, float lfp, vec2 wrap) {
         float fx = x - ix;
         float d = min(min(fx, 1.0 - fx) * w0.x, min(q.y - r.y, r.z - q.y));
         vec2 per = vec2(wrap.x * 0.125, wrap.y * 4.0);
-        float g = octaves(vec3(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, 0.0, lfp + 2.0, per);
+        float g = octaves(vec3(q.x * 0.125, q.y * 4.0, q.z), 0.5, 0u, lfp + 2.0, per);
         float shade = (1.0 - w0.w * cell_hash_wrapped(int(ix), int(iy), 0u, n))
             * (1.0 - w1.x * (0.5 + 0.5 * tanh(g)));
         return soft_step(0.5 * w0.y, max(w0.z, soft), d) * shade;

@@ -114,14 +114,9 @@ pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize, per: [f32; 2]
     }
 }
 
-/// The mean magnitude of a noise octave's gradient, per noise coefficient (the 2D tile's unit
-/// variance noise: 2.18 over four seeds, `tests::the_noise_gradient_is_the_tiles`; the solid
-/// tile's along a slice 1.97). [`crest`] reads the noise's change across a pixel from it.
-pub const NOISE_GRADIENT: f32 = 2.2;
-
-/// A ridged octave's crest `exp(−sharpness·|n|)` as a pixel shows it: `lfp` the log2 of the
-/// pixel's footprint in the octave's noise coefficients, over which the noise changes by about
-/// `g = NOISE_GRADIENT · 2^lfp`.
+/// A ridged octave's crest `exp(−sharpness·|n|)` as a pixel shows it, `g` the noise's change
+/// across the pixel ([`pixel_change`] of the octave one pixel along each axis, as
+/// [`ridged_octaves`] measures it):
 /// - The sharpness is at most `2 / g`: a crest is at least one pixel wide (at `1/e`).
 /// - The crest is averaged over `n ± g/2` (the noise taken as linear across the pixel; the
 ///   antiderivative of `exp(−s·|x|)` is `sign(x)·(1 − exp(−s·|x|)) / s`).
@@ -133,12 +128,18 @@ pub const NOISE_GRADIENT: f32 = 2.2;
 /// speck-clean chosen renders 184 → 198 of 208 with both, 188 with the floor alone, 188 with
 /// the average alone; 4 folds by photo all chose both (held out 198), structured labelled
 /// 69 → 68. The average alone makes fine crests faint, the floor alone leaves them dotted at
-/// `1/e`. On 67 structured textures never tuned on: speck-clean 215 → 227 of 268 quadrants,
-/// labelled 168 → 161 (antialiased crests come nearer to some stone floors than cells do).
+/// `1/e`. On 67 structured textures never tuned on: speck-clean 215 → 227 of 268 quadrants.
+///
+/// The change where the pixel is, not the octaves' mean gradient (2.2 per noise coefficient,
+/// which the first version used): where the noise crosses 0 steeply a crest was still narrower
+/// than the pixel, and drawn dotted. Ridged's own renders over the speck limit 51 → 20 of 208,
+/// every fitted render within it 1376 → 1408 of 2080; 4 folds by photo all chose the local
+/// change; structured labelled 68 → 68 (docs/devset.md, "Ridged's crests over the noise's
+/// change where the pixel is"). On the 67 textures never tuned on: speck-clean chosen renders
+/// 229 → 235 of 268, ridged's own over the limit 114 → 62.
 #[inline]
-pub fn crest(n: f32, sharpness: f32, lfp: f32) -> f32 {
-    let g = NOISE_GRADIENT * lfp.exp2();
-    let s = sharpness.min(2.0 / g);
+pub fn crest(n: f32, sharpness: f32, g: f32) -> f32 {
+    let s = sharpness.min(2.0 / g.max(1e-6));
     let h = 0.5 * g;
     if s * h < 1e-3 {
         // A pixel much finer than the crest: its centre's value (and no cancellation).
@@ -207,7 +208,6 @@ pub fn wood_line_coordinate(
         [0.25 * q[0] / w[0], 0.25 * q[1], 0.25 * q[2]],
         w[3],
         0,
-        0.0,
         lfp - 2.0,
         per,
     );
@@ -226,7 +226,6 @@ pub fn ring_coordinate(prep: &Prepared, tile: &Tile, p: [f32; 3], lfp: f32, per:
         [0.25 * p[0], 0.25 * p[1], 0.25 * p[2]],
         w[2],
         0,
-        0.0,
         lfp - 2.0,
         [0.25 * per[0], 0.25 * per[1]],
     );
@@ -234,11 +233,10 @@ pub fn ring_coordinate(prep: &Prepared, tile: &Tile, p: [f32; 3], lfp: f32, per:
 }
 
 /// The octaves summed with amplitude ratio `gain`, each octave's noise `n` taken as `n`
-/// (`mode` 0: fractal noise, unit variance when nothing is faded), `|n|` (1: turbulence,
-/// Perlin 1985) or its [`crest`] (2: ridged, crests where the noise crosses 0); modes 1
-/// and 2 normalised by the amplitudes' sum. `lfp`: log2 of the pixel footprint in pattern units
-/// (octaves fade out as [`band_fade`] fades bands). `per`: `q`'s period (see [`octave`]).
-#[allow(clippy::too_many_arguments)] // the twin of the WGSL function's argument list
+/// (`mode` 0: fractal noise, unit variance when nothing is faded) or `|n|` (1: turbulence,
+/// Perlin 1985, normalised by the amplitudes' sum). `lfp`: log2 of the pixel footprint in
+/// pattern units (octaves fade out as [`band_fade`] fades bands). `per`: `q`'s period (see
+/// [`octave`]). Ridged's octaves are [`ridged_octaves`].
 #[inline]
 pub fn octaves(
     prep: &Prepared,
@@ -246,6 +244,41 @@ pub fn octaves(
     q: [f32; 3],
     gain: f32,
     mode: u32,
+    lfp: f32,
+    per: [f32; 2],
+) -> f32 {
+    let mut sum = 0.0f32;
+    let mut norm = 0.0f32;
+    let mut amp = 1.0f32;
+    for k in 0..OCTAVES {
+        let fade = band_fade(0, lfp + k as f32);
+        if fade > 0.0 {
+            let n = octave(prep, tile, q, k, per);
+            sum += amp * fade * if mode == 0 { n } else { n.abs() };
+        }
+        norm += if mode == 0 { amp * amp } else { amp };
+        amp *= gain;
+    }
+    if mode == 0 {
+        sum / norm.sqrt()
+    } else {
+        sum / norm
+    }
+}
+
+/// Ridged's octaves (Musgrave's ridged multifractal without its weighting): with amplitude
+/// ratio `gain`, each octave's [`crest`] where its noise crosses 0, drawn over the noise's
+/// change across the pixel where it is (forward differences one pixel, `pixel_step`, along the
+/// pattern's axes, in `q`'s units), normalised by the amplitudes' sum. `lfp`, `per` as
+/// [`octaves`]'.
+#[allow(clippy::too_many_arguments)] // the twin of the WGSL function's argument list
+#[inline]
+pub fn ridged_octaves(
+    prep: &Prepared,
+    tile: &Tile,
+    q: [f32; 3],
+    pixel_step: [f32; 2],
+    gain: f32,
     sharpness: f32,
     lfp: f32,
     per: [f32; 2],
@@ -257,21 +290,14 @@ pub fn octaves(
         let fade = band_fade(0, lfp + k as f32);
         if fade > 0.0 {
             let n = octave(prep, tile, q, k, per);
-            let v = match mode {
-                0 => n,
-                1 => n.abs(),
-                _ => crest(n, sharpness, lfp + k as f32),
-            };
-            sum += amp * fade * v;
+            let nx = octave(prep, tile, [q[0] + pixel_step[0], q[1], q[2]], k, per);
+            let ny = octave(prep, tile, [q[0], q[1] + pixel_step[1], q[2]], k, per);
+            sum += amp * fade * crest(n, sharpness, pixel_change(n, nx, ny));
         }
-        norm += if mode == 0 { amp * amp } else { amp };
+        norm += amp;
         amp *= gain;
     }
-    if mode == 0 {
-        sum / norm.sqrt()
-    } else {
-        sum / norm
-    }
+    sum / norm
 }
 
 /// The two fractal noises (octaves of 4 cells and finer, the second read [`WARP_OFFSET`] noise
@@ -288,9 +314,9 @@ pub fn cells_warp_field(
     per: [f32; 2],
 ) -> [f32; 2] {
     let b = [0.25 * p[0], 0.25 * p[1], 0.25 * z];
-    let gx = octaves(prep, tile, b, 0.5, 0, 0.0, lfp - 2.0, per);
+    let gx = octaves(prep, tile, b, 0.5, 0, lfp - 2.0, per);
     let b2 = [b[0] + WARP_OFFSET, b[1], b[2]];
-    let gy = octaves(prep, tile, b2, 0.5, 0, 0.0, lfp - 2.0, per);
+    let gy = octaves(prep, tile, b2, 0.5, 0, lfp - 2.0, per);
     [gx, gy]
 }
 
@@ -342,24 +368,24 @@ pub fn pattern_at(prep: &Prepared, tile: &Tile, q: [f32; 3], lfp: f32, wrap: [f3
     let w = prep.pattern_values;
     let soft = lfp.exp2();
     // The noise families' octaves along the pattern stretched by its first value.
-    let stretched = |mode: u32, sharpness: f32| {
-        let per = [wrap[0] / w[0], wrap[1]];
-        let q = [q[0] / w[0], q[1], q[2]];
-        octaves(prep, tile, q, w[1], mode, sharpness, lfp, per)
-    };
+    let per = [wrap[0] / w[0], wrap[1]];
+    let stretched = [q[0] / w[0], q[1], q[2]];
     match prep.pattern[0] {
         // perlin: stretch, roughness, contrast, threshold
         1 => {
-            let n = stretched(0, 0.0);
+            let n = octaves(prep, tile, stretched, w[1], 0, lfp, per);
             1.0 / (1.0 + (-w[2] * (n - w[3])).exp())
         }
         // turbulence: stretch, roughness, contrast
         2 => {
-            let t = stretched(1, 0.0);
+            let t = octaves(prep, tile, stretched, w[1], 1, lfp, per);
             1.0 - (-w[2] * t).exp()
         }
         // ridged: stretch, roughness, sharpness
-        3 => stretched(2, w[2]),
+        3 => {
+            let pixel_step = [soft / w[0], soft];
+            ridged_octaves(prep, tile, stretched, pixel_step, w[1], w[2], lfp, per)
+        }
         // grid: aspect, mortar, bevel, variation
         4 => {
             let n = wrap_cells(w[0], wrap);
@@ -444,7 +470,6 @@ pub fn pattern_at(prep: &Prepared, tile: &Tile, q: [f32; 3], lfp: f32, wrap: [f3
                 [q[0] * 0.125, q[1] * 4.0, q[2]],
                 0.5,
                 0,
-                0.0,
                 lfp + 2.0,
                 per,
             );

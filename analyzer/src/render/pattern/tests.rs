@@ -3,62 +3,92 @@
 use super::*;
 use crate::pattern::{Pattern, PatternKind};
 
-/// [`NOISE_GRADIENT`] is the 2D tile's own: the mean gradient magnitude of the pattern noise
-/// by central differences at random points over four seeds, within 3 %. The solid tile's
-/// gradient along a slice's plane is about a tenth smaller (its crests are bounded a tenth
-/// wider than a pixel).
-#[test]
-fn the_noise_gradient_is_the_tiles() {
-    use crate::noise::{noise2_first, noise3_first};
-    let points = 5_000u32;
-    let d = 1e-2f32;
-    let (mut g2, mut g3) = (0.0f64, 0.0f64);
-    for seed in 1..=4u32 {
-        let (t2, t3) = (Tile::new_2d(seed), Tile::new_3d(seed));
-        let at = |k: u32, i: u32| 64.0 * rng::uniform(seed, k, i) as f32;
-        for i in 0..points {
-            let p = [at(0, i), at(1, i), at(2, i)];
-            let n2 = |x: f32, y: f32| noise2_first(&t2.data, t2.n, [x, y]);
-            let gx = (n2(p[0] + d, p[1]) - n2(p[0] - d, p[1])) / (2.0 * d);
-            let gy = (n2(p[0], p[1] + d) - n2(p[0], p[1] - d)) / (2.0 * d);
-            g2 += (gx * gx + gy * gy).sqrt() as f64;
-            let n3 = |x: f32, y: f32| noise3_first(&t3.data, t3.n, [x, y, p[2]]);
-            let gx = (n3(p[0] + d, p[1]) - n3(p[0] - d, p[1])) / (2.0 * d);
-            let gy = (n3(p[0], p[1] + d) - n3(p[0], p[1] - d)) / (2.0 * d);
-            g3 += (gx * gx + gy * gy).sqrt() as f64;
-        }
-    }
-    let (g2, g3) = (g2 / (4 * points) as f64, g3 / (4 * points) as f64);
-    eprintln!("mean noise gradient: 2D {g2:.3}, solid along a slice {g3:.3}");
-    assert!((g2 / NOISE_GRADIENT as f64 - 1.0).abs() < 0.03, "{g2}");
-    assert!((0.8..1.0).contains(&(g3 / NOISE_GRADIENT as f64)), "{g3}");
-}
-
 /// A crest finer than the pixel is drawn at least a pixel wide and averaged over it; one
 /// much wider than the pixel keeps its profile.
 #[test]
 fn crests_are_drawn_at_least_a_pixel_wide() {
-    // Zoomed in (a pixel a thousandth of a noise coefficient or less): the point value.
+    // Zoomed in (the noise changing by a ten-thousandth or a thousandth across the pixel):
+    // the point value.
     for n in [-0.3f32, 0.0, 0.05, 0.4] {
         let exact = (-6.0 * n.abs()).exp();
-        assert!((crest(n, 6.0, -16.0) - exact).abs() < 1e-5, "{n}");
-        assert!((crest(n, 6.0, -10.0) - exact).abs() < 1e-2, "{n}");
+        assert!((crest(n, 6.0, 3e-5) - exact).abs() < 1e-5, "{n}");
+        assert!((crest(n, 6.0, 2e-3) - exact).abs() < 1e-2, "{n}");
     }
-    // A pixel of one noise coefficient (the noise changes by 2.2 across it): the crest's
-    // sharpness is bounded to 2 / 2.2 and its mean over the pixel is below its peak,
-    // falling off smoothly; without the bound a sharpness of 12 would make it a spike.
-    let c = |n: f32| crest(n, 12.0, 0.0);
+    // The noise changing by 2.2 across the pixel (a pixel of about one noise coefficient):
+    // the crest's sharpness is bounded to 2 / 2.2 and its mean over the pixel is below its
+    // peak, falling off smoothly; without the bound a sharpness of 12 would make it a spike.
+    let c = |n: f32| crest(n, 12.0, 2.2);
     assert!(c(0.0) < 1.0 && c(0.0) > 0.5, "{}", c(0.0));
     assert!(c(0.5) > 0.4 * c(0.0), "{} {}", c(0.5), c(0.0));
     assert!(c(0.0) > c(0.3) && c(0.3) > c(0.6) && c(0.6) > c(1.2));
     assert_eq!(c(0.4), c(-0.4));
-    // Whatever the footprint, a crest stays within [0, 1].
-    for lfp in [-8.0f32, -3.0, -1.0, 0.0, 2.0, 6.0] {
+    // Whatever the change across the pixel (0 included), a crest stays within [0, 1].
+    for g in [0.0f32, 1e-4, 0.01, 0.3, 1.0, 2.2, 9.0, 140.0] {
         for n in [-2.0f32, -0.1, 0.0, 0.1, 2.0] {
-            let v = crest(n, 9.0, lfp);
-            assert!((0.0..=1.0).contains(&v), "{lfp} {n} {v}");
+            let v = crest(n, 9.0, g);
+            assert!((0.0..=1.0).contains(&v), "{g} {n} {v}");
         }
     }
+}
+
+/// Sharp, rough ridged crests (sharpness 10, roughness 0.9, 12 pixels a cell): drawn over the
+/// noise's change where each pixel is, the pattern has a small fraction of the isolated pixels
+/// that sampling each crest at the pixel's centre draws, and fewer than drawing it over the
+/// octaves' mean change (2.2 per noise coefficient) leaves where the noise crosses 0 steeply.
+#[test]
+fn sharp_ridged_crests_are_not_dotted() {
+    use crate::specks::speck_fraction;
+    let tile = Tile::new_2d(1);
+    let values = [("sharpness", 10.0), ("roughness", 0.9), ("stretch", 1.0)];
+    let prep = prepared_with(PatternKind::Ridged, 12.0, &values);
+    let (w, h) = (128u32, 128u32);
+    let grey = |v: Vec<f32>| grey_image(w, h, v);
+    let drawn = grey(structure_image_prepared(&prep, &tile, w, h));
+    let [is, c, s, lfp] = prep.pattern_transform;
+    // The same octaves with each crest's change across the pixel given by `change`.
+    let with = |change: &dyn Fn(f32, f32, f32, usize) -> f32| {
+        grey(
+            (0..w * h)
+                .map(|i| {
+                    let u = [(i % w) as f32 + 0.5, (i / w) as f32 + 0.5];
+                    let q = [(c * u[0] + s * u[1]) * is, (-s * u[0] + c * u[1]) * is, 0.0];
+                    let (mut sum, mut norm, mut amp) = (0.0, 0.0, 1.0);
+                    for k in 0..OCTAVES {
+                        let fade = band_fade(0, lfp + k as f32);
+                        if fade > 0.0 {
+                            let at = |q: [f32; 3]| octave(&prep, &tile, q, k, [0.0, 0.0]);
+                            let n = at(q);
+                            let nx = at([q[0] + is, q[1], q[2]]);
+                            let ny = at([q[0], q[1] + is, q[2]]);
+                            sum += amp * fade * crest(n, 10.0, change(n, nx, ny, k));
+                        }
+                        norm += amp;
+                        amp *= 0.9;
+                    }
+                    sum / norm
+                })
+                .collect(),
+        )
+    };
+    let here = with(&|n, nx, ny, _| pixel_change(n, nx, ny));
+    let mean = with(&|_, _, _, k| 2.2 * (lfp + k as f32).exp2());
+    let sampled = with(&|_, _, _, _| 0.0);
+    assert_eq!(
+        here.pixels, drawn.pixels,
+        "the pattern draws the local change"
+    );
+    let (drawn, mean, sampled) = (
+        speck_fraction(&drawn),
+        speck_fraction(&mean),
+        speck_fraction(&sampled),
+    );
+    eprintln!(
+        "speck fraction: over the change here {drawn:.4}, the mean change {mean:.4}, \
+         point-sampled {sampled:.4}"
+    );
+    assert!(sampled > 0.01, "{sampled}");
+    assert!(drawn < 0.25 * sampled, "{drawn} {sampled}");
+    assert!(drawn < mean, "{drawn} {mean}");
 }
 
 /// A line finer than the pixel is drawn at least a pixel wide and averaged over it; one
@@ -99,25 +129,17 @@ fn lines_are_drawn_at_least_a_pixel_wide() {
 /// that sampling the profile at each pixel's centre draws (its dotted lines).
 #[test]
 fn sharp_wood_lines_are_not_dotted() {
-    use crate::input::Photo;
     use crate::specks::speck_fraction;
     let tile = Tile::new_2d(1);
-    let mut p = Pattern::new(PatternKind::WoodLines, 5.0);
-    for (k, v) in [
+    let values = [
         ("sharpness", 8.0),
         ("distortion", 1.5),
         ("roughness", 0.9),
         ("stretch", 4.0),
-    ] {
-        assert!(p.set(k, v), "{k}");
-    }
-    let prep = Prepared::new(&crate::params::pattern_shell(p, 1, false));
+    ];
+    let prep = prepared_with(PatternKind::WoodLines, 5.0, &values);
     let (w, h) = (128u32, 128u32);
-    let grey = |v: Vec<f32>| Photo {
-        width: w,
-        height: h,
-        pixels: v.into_iter().map(|x| [x, x, x]).collect(),
-    };
+    let grey = |v: Vec<f32>| grey_image(w, h, v);
     let drawn = grey(structure_image_prepared(&prep, &tile, w, h));
     let [is, c, s, log2_is] = prep.pattern_transform;
     let sampled = grey(
@@ -266,4 +288,22 @@ fn soft_step_is_a_clamped_smooth_step() {
     assert_eq!(soft_step(0.1, 0.2, 0.0), 0.0);
     assert_eq!(soft_step(0.1, 0.2, 0.3), 1.0);
     assert!((soft_step(0.1, 0.2, 0.2) - 0.5).abs() < 1e-6);
+}
+
+/// A pattern of `kind` at `scale` with the given values, prepared for rendering.
+fn prepared_with(kind: PatternKind, scale: f32, values: &[(&str, f32)]) -> Prepared {
+    let mut p = Pattern::new(kind, scale);
+    for &(k, v) in values {
+        assert!(p.set(k, v), "{k}");
+    }
+    Prepared::new(&crate::params::pattern_shell(p, 1, false))
+}
+
+/// A grey `w`×`h` image of the values `v`, row by row.
+fn grey_image(w: u32, h: u32, v: Vec<f32>) -> crate::input::Photo {
+    crate::input::Photo {
+        width: w,
+        height: h,
+        pixels: v.into_iter().map(|x| [x, x, x]).collect(),
+    }
 }
