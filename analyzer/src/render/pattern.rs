@@ -128,7 +128,8 @@ pub fn octave(prep: &Prepared, tile: &Tile, q: [f32; 3], k: usize, per: [f32; 2]
 /// speck-clean chosen renders 184 → 198 of 208 with both, 188 with the floor alone, 188 with
 /// the average alone; 4 folds by photo all chose both (held out 198), structured labelled
 /// 69 → 68. The average alone makes fine crests faint, the floor alone leaves them dotted at
-/// `1/e`. On 67 structured textures never tuned on: speck-clean 215 → 227 of 268 quadrants.
+/// `1/e`. On 67 structured textures never tuned on: speck-clean 215 → 227 of 268 quadrants,
+/// labelled 168 → 161 (antialiased crests come nearer to some stone floors than cells do).
 ///
 /// The change where the pixel is, not the octaves' mean gradient (2.2 per noise coefficient,
 /// which the first version used): where the noise crosses 0 steeply a crest was still narrower
