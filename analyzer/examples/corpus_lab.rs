@@ -15,7 +15,9 @@
 //!   `CORPUS_LAB_BOOTSTRAP=N` first scores N corpora drawn from the labelled textures with
 //!   replacement (the spread of the development set's count over the corpus's sampling).
 //!   Measured alternatives (not the product's): `CORPUS_LAB_EXTRA=lum` also describes each
-//!   patch's luminance map; `CORPUS_LAB_DIAG_RIDGE=1` scales the ridge by each feature's own
+//!   patch's luminance map; `CORPUS_LAB_EXTRA=topo` also describes the topology of the
+//!   descriptor image's dark and bright phases (their sum and absolute difference;
+//!   `CORPUS_LAB_TOPO_LOG=1` takes their signed log1p); `CORPUS_LAB_DIAG_RIDGE=1` scales the ridge by each feature's own
 //!   within-class variance instead of their mean (the same as standardising the features);
 //!   `CORPUS_LAB_NO_LINES=1` zeroes the two straight-line cues (the cues' costliest).
 //!   `CORPUS_LAB_AUG=half` also trains on each texture's quadrants at half its size.
@@ -94,6 +96,17 @@ fn describe(photo: &Photo) -> Descriptor {
             .collect();
         d.0.extend(query(&lum, w, h).0.0);
     }
+    if with_topology() {
+        let img = proctex::gabor::descriptor_image(&map, w, h);
+        let n = proctex::gabor::SIZE;
+        let negated: Vec<f32> = img.iter().map(|v| -v).collect();
+        let dark = lab_common::topology::topology(&img, n);
+        let bright = lab_common::topology::topology(&negated, n);
+        for k in 0..lab_common::topology::TOPOLOGY {
+            d.0.push((dark[k] + bright[k]) as f32);
+            d.0.push((dark[k] - bright[k]).abs() as f32);
+        }
+    }
     let mut c = cues(photo);
     if std::env::var("CORPUS_LAB_NO_LINES").is_ok() {
         for (v, name) in c.iter_mut().zip(CUE_NAMES) {
@@ -106,6 +119,10 @@ fn describe(photo: &Photo) -> Descriptor {
     d
 }
 
+fn with_topology() -> bool {
+    std::env::var("CORPUS_LAB_EXTRA").is_ok_and(|v| v.contains("topo"))
+}
+
 fn with_luminance() -> bool {
     std::env::var("CORPUS_LAB_EXTRA").is_ok_and(|v| v.contains("lum"))
 }
@@ -116,6 +133,23 @@ fn with_luminance() -> bool {
 fn lab_features(d: &Descriptor, harmonics: usize) -> Vec<f64> {
     let cues: [f32; CUES] = d.0[d.0.len() - CUES..].try_into().unwrap();
     let map = Descriptor(d.0[..LEN].to_vec());
+    if with_topology() && !with_luminance() {
+        let topo = 2 * lab_common::topology::TOPOLOGY;
+        let mut out = features(&map, &cues, harmonics);
+        out.extend(
+            d.0[d.0.len() - CUES - topo..d.0.len() - CUES]
+                .iter()
+                .map(|&v| {
+                    let v = v as f64;
+                    if std::env::var("CORPUS_LAB_TOPO_LOG").is_ok() {
+                        v.signum() * v.abs().ln_1p()
+                    } else {
+                        v
+                    }
+                }),
+        );
+        return out;
+    }
     if !with_luminance() {
         return features(&map, &cues, harmonics);
     }
