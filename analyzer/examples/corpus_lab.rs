@@ -25,6 +25,9 @@
 //!   nearest training views in the discriminant's space instead of to its mean. With
 //!   `CORPUS_LAB_DUMP=1` each line also has the patch's margin (the noise class's distance minus
 //!   the nearest family's).
+//!   `CORPUS_LAB_QDA=ALPHA` scores each class by its own Gaussian in the discriminant's space
+//!   (its covariance shrunk towards the pooled one by ALPHA: a quadratic discriminant) instead of
+//!   the squared distance to its mean.
 //!   `CORPUS_LAB_DEV_FOLDS=K` scores each development photo with a discriminant trained on the
 //!   corpus and on the development photos of the other K − 1 folds by photo (their manifest's
 //!   first family as the label): what the development photos would add as training textures.
@@ -254,6 +257,9 @@ struct Classifier {
     model: lab_common::lda::Model,
     present: Vec<usize>,
     harmonics: usize,
+    /// Each class's own Gaussian in the projected space (`CORPUS_LAB_QDA=ALPHA`, its shrinkage
+    /// towards the pooled spread): the classes scored by quadratic discriminant.
+    gaussians: Option<Vec<(Vec<f64>, f64)>>,
 }
 
 impl Classifier {
@@ -270,10 +276,15 @@ impl Classifier {
             }
         }
         let model = fit(&xs, present.len(), ridge, present.len() - 1);
+        let gaussians = std::env::var("CORPUS_LAB_QDA")
+            .ok()
+            .and_then(|v| v.parse::<f64>().ok())
+            .map(|alpha| lab_common::lda::class_gaussians(&model, present.len(), alpha));
         Classifier {
             model,
             present,
             harmonics,
+            gaussians,
         }
     }
 
@@ -286,6 +297,9 @@ impl Classifier {
             .unwrap_or(0);
         let score = |d: &Descriptor| {
             let y = project(&self.model.proj, &lab_features(d, self.harmonics));
+            if let Some(g) = &self.gaussians {
+                return lab_common::lda::gaussian_scores(&self.model, g, &y);
+            }
             if knn == 0 {
                 return scores(&self.model, &y, self.present.len(), 0);
             }

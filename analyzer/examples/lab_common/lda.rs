@@ -217,3 +217,80 @@ pub fn scores(m: &Model, y: &[f64], classes: usize, knn: usize) -> Vec<f64> {
         .map(|c| -votes[c] + nearest[c] * 1e-6)
         .collect()
 }
+
+/// Each class's covariance in the projected space, shrunk towards the identity (the pooled
+/// within-class covariance there, which the projection whitens): `(1 − alpha) Σ_c + alpha I`,
+/// as its inverse (row-major) and the log of its determinant. For `CORPUS_LAB_QDA`: classes
+/// scored by their own spread (quadratic discriminant) instead of the pooled one.
+pub fn class_gaussians(m: &Model, classes: usize, alpha: f64) -> Vec<(Vec<f64>, f64)> {
+    let n = m.means[0].len();
+    (0..classes)
+        .map(|c| {
+            let mut s = vec![0.0; n * n];
+            let mut count = 0.0;
+            for (p, k) in &m.points {
+                if *k != c {
+                    continue;
+                }
+                count += 1.0;
+                for i in 0..n {
+                    for j in 0..n {
+                        s[i * n + j] += (p[i] - m.means[c][i]) * (p[j] - m.means[c][j]);
+                    }
+                }
+            }
+            for i in 0..n {
+                for j in 0..n {
+                    let own = if count > 1.0 {
+                        s[i * n + j] / count
+                    } else {
+                        0.0
+                    };
+                    let target = if i == j { 1.0 } else { 0.0 };
+                    s[i * n + j] = (1.0 - alpha) * own + alpha * target;
+                }
+            }
+            let l = cholesky(&s, n);
+            let logdet = 2.0 * (0..n).map(|i| l[i * n + i].ln()).sum::<f64>();
+            // Inverse column by column: solve L Lᵀ x = e_j.
+            let mut inv = vec![0.0; n * n];
+            for j in 0..n {
+                let e: Vec<f64> = (0..n).map(|i| (i == j) as u8 as f64).collect();
+                let y = forward(&l, n, &e);
+                let mut x = vec![0.0; n];
+                for i in (0..n).rev() {
+                    let mut t = y[i];
+                    for k in i + 1..n {
+                        t -= l[k * n + i] * x[k];
+                    }
+                    x[i] = t / l[i * n + i];
+                }
+                for i in 0..n {
+                    inv[i * n + j] = x[i];
+                }
+            }
+            (inv, logdet)
+        })
+        .collect()
+}
+
+/// A projected query's quadratic-discriminant score for each class ([`class_gaussians`]):
+/// Mahalanobis distance to the class mean plus the log determinant (−2 log-likelihood up to a
+/// constant).
+pub fn gaussian_scores(m: &Model, g: &[(Vec<f64>, f64)], y: &[f64]) -> Vec<f64> {
+    let n = y.len();
+    m.means
+        .iter()
+        .zip(g)
+        .map(|(mu, (inv, logdet))| {
+            let d: Vec<f64> = (0..n).map(|i| y[i] - mu[i]).collect();
+            let mut q = 0.0;
+            for i in 0..n {
+                for j in 0..n {
+                    q += d[i] * inv[i * n + j] * d[j];
+                }
+            }
+            q + logdet
+        })
+        .collect()
+}
