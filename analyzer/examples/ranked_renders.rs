@@ -7,20 +7,17 @@
 //! file, quadrant, category, labels (comma-separated), the candidates in the ranking's order.
 //!
 //! `cargo run --release -p proctex-analyzer --example ranked_renders -- SET_DIR OUT_DIR`
+// Only the quadrant cut and the PNG writer are used here.
+#[allow(dead_code)]
+mod lab_common;
+
+use lab_common::{quadrants, save_png};
 use proctex::analyze::Options;
 use proctex::db::Db;
 use proctex::devset::parse_manifest;
 use proctex::evaluate::render_params_at_photo_size;
-use proctex::input::{Crop, Photo};
+use proctex::input::Photo;
 use proctex::retrieve::{Refinement, suggest_with};
-
-fn save(p: &Photo, path: &std::path::Path) {
-    let img = image::RgbImage::from_fn(p.width, p.height, |x, y| {
-        let c = p.pixels[(y * p.width + x) as usize];
-        image::Rgb(c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
-    });
-    img.save(path).unwrap();
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -33,24 +30,16 @@ fn main() {
     for entry in parse_manifest(&manifest).expect("a manifest") {
         let photo = Photo::decode(&std::fs::read(dir.join(&entry.file)).unwrap()).unwrap();
         let stem = entry.file.trim_end_matches(".png").to_string();
-        let (w, h) = (photo.width / 2, photo.height / 2);
-        for (q, qx, qy) in [("tl", 0, 0), ("tr", 1, 0), ("bl", 0, 1), ("br", 1, 1)] {
-            let patch = photo
-                .crop(Crop {
-                    x: qx * w,
-                    y: qy * h,
-                    w,
-                    h,
-                })
-                .unwrap();
-            save(&patch, &out.join(format!("{stem}_{q}_photo.png")));
+        // `quadrants` cuts them in this order.
+        for (q, patch) in ["tl", "tr", "bl", "br"].into_iter().zip(quadrants(&photo)) {
+            save_png(&patch, &out.join(format!("{stem}_{q}_photo.png")));
             let ranked = suggest_with(db, &patch, &opts, Refinement::default(), &|_, _| true);
             let mut names = Vec::new();
             for s in &ranked {
                 names.push(s.name);
                 if let Some(p) = &s.preview {
                     let r = render_params_at_photo_size(p, &patch);
-                    save(&r, &out.join(format!("{stem}_{q}_{}.png", s.name)));
+                    save_png(&r, &out.join(format!("{stem}_{q}_{}.png", s.name)));
                 }
             }
             println!(

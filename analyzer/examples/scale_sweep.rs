@@ -6,6 +6,11 @@
 //! `SWEEP_PNG=DIR` writes each render to DIR as NAME.png.
 //!
 //! `cargo run --release -p proctex-analyzer --example scale_sweep -- PHOTO FAMILY QX QY [F...]`
+// Only the PNG writer is used here.
+#[allow(dead_code)]
+mod lab_common;
+
+use lab_common::save_png;
 use proctex::analyze::Options;
 use proctex::db::Db;
 use proctex::distance::distances;
@@ -61,12 +66,7 @@ fn main() {
     let show = |name: &str, p: &proctex::params::Params| {
         let r = render_params_at_photo_size(p, &patch);
         if let Some(dir) = std::env::var_os("SWEEP_PNG") {
-            let img = image::RgbImage::from_fn(r.width, r.height, |x, y| {
-                let c = r.pixels[(y * r.width + x) as usize];
-                image::Rgb(c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
-            });
-            img.save(std::path::Path::new(&dir).join(format!("{name}.png")))
-                .unwrap();
+            save_png(&r, &std::path::Path::new(&dir).join(format!("{name}.png")));
         }
         let (s, t) = (distances(&r, &patch), distances(&r, &other));
         println!(

@@ -34,6 +34,19 @@ fn forward(l: &[f64], n: usize, b: &[f64]) -> Vec<f64> {
     x
 }
 
+/// Solve Lᵀ x = b (backward), `l` the Cholesky factor.
+fn backward(l: &[f64], n: usize, b: &[f64]) -> Vec<f64> {
+    let mut x = vec![0.0; n];
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= l[k * n + i] * x[k];
+        }
+        x[i] = s / l[i * n + i];
+    }
+    x
+}
+
 /// Jacobi eigen decomposition of a symmetric matrix: (values, vectors as columns).
 fn jacobi(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut a = a.to_vec();
@@ -173,15 +186,7 @@ pub fn fit(xs: &[(Vec<f64>, usize)], classes: usize, ridge: f64, dims: usize) ->
         .iter()
         .map(|&k| {
             let u: Vec<f64> = (0..n).map(|i| vecs[i * n + k]).collect();
-            let mut p = vec![0.0; n];
-            for i in (0..n).rev() {
-                let mut s = u[i];
-                for j in i + 1..n {
-                    s -= l[j * n + i] * p[j];
-                }
-                p[i] = s / l[i * n + i];
-            }
-            p
+            backward(&l, n, &u)
         })
         .collect();
     let means = mean.iter().map(|m| project(&proj, m)).collect();
@@ -256,15 +261,7 @@ pub fn class_gaussians(m: &Model, classes: usize, alpha: f64) -> Vec<(Vec<f64>, 
             let mut inv = vec![0.0; n * n];
             for j in 0..n {
                 let e: Vec<f64> = (0..n).map(|i| (i == j) as u8 as f64).collect();
-                let y = forward(&l, n, &e);
-                let mut x = vec![0.0; n];
-                for i in (0..n).rev() {
-                    let mut t = y[i];
-                    for k in i + 1..n {
-                        t -= l[k * n + i] * x[k];
-                    }
-                    x[i] = t / l[i * n + i];
-                }
+                let x = backward(&l, n, &forward(&l, n, &e));
                 for i in 0..n {
                     inv[i * n + j] = x[i];
                 }

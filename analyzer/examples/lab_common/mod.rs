@@ -1,5 +1,5 @@
 //! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`, `corpus_lab`,
-//! `coarse_lab`, `descriptor_parts`, `null_gate_lab`): the quadrant patches of the labelled
+//! `coarse_lab`, `descriptor_parts`, `null_gate_lab`, `ranked_renders`, `scale_sweep`): the quadrant patches of the labelled
 //! photos, a quadrant as the ranking sees it, and the photo-like augmentation of a clean pattern.
 
 // Not every laboratory fits a discriminant.
@@ -47,6 +47,17 @@ pub fn quadrants(photo: &Photo) -> Vec<Photo> {
                 .unwrap()
         })
         .collect()
+}
+
+/// `photo` written as an 8-bit RGB PNG at `path` (values clamped to 0–1).
+// Only the laboratories that write their renders out save images.
+#[allow(dead_code)]
+pub fn save_png(photo: &Photo, path: &std::path::Path) {
+    let img = image::RgbImage::from_fn(photo.width, photo.height, |x, y| {
+        let c = photo.pixels[(y * photo.width + x) as usize];
+        image::Rgb(c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
+    });
+    img.save(path).unwrap();
 }
 
 /// The four quadrants of every photo in the development set at `dir`.
