@@ -51,6 +51,29 @@ fn main() {
         })
     );
     println!(
+        "no finest band after the histogram {:.4}",
+        variant(&|m| m.residual.fine = [0.0; 3])
+    );
+    println!(
+        "no finest band at all  {:.4}",
+        variant(&|m| {
+            m.residual.fine = [0.0; 3];
+            m.residual.weights.iter_mut().for_each(|w| w[0] = 0.0);
+        })
+    );
+    println!(
+        "no two finest bands    {:.4}",
+        variant(&|m| {
+            m.residual.fine = [0.0; 3];
+            m.residual.weights.iter_mut().for_each(|w| {
+                w[0] = 0.0;
+                if w.len() > 1 {
+                    w[1] = 0.0;
+                }
+            });
+        })
+    );
+    println!(
         "ramp alone (no residual, no tone) {:.4}",
         variant(&|m| {
             m.residual.weights.iter_mut().for_each(|w| w.fill(0.0));
@@ -86,6 +109,10 @@ fn main() {
         img.save(out).unwrap();
     }
     if let Model::Structured(m) = &full.model {
+        println!(
+            "residual weights {:?} fine {:?}",
+            m.residual.weights, m.residual.fine
+        );
         println!("pattern {:?}", m.pattern);
         println!(
             "ramp {:?}",
