@@ -50,29 +50,22 @@ fn main() {
             m.residual.fine = [0.0; 3];
         })
     );
+    // The residual without its finest band's part after the histogram, and without its `n`
+    // finest bands altogether (that part included).
+    let without_finest = |n: usize| {
+        variant(&|m| {
+            m.residual.fine = [0.0; 3];
+            for w in &mut m.residual.weights {
+                w.iter_mut().take(n).for_each(|v| *v = 0.0);
+            }
+        })
+    };
     println!(
         "no finest band after the histogram {:.4}",
-        variant(&|m| m.residual.fine = [0.0; 3])
+        without_finest(0)
     );
-    println!(
-        "no finest band at all  {:.4}",
-        variant(&|m| {
-            m.residual.fine = [0.0; 3];
-            m.residual.weights.iter_mut().for_each(|w| w[0] = 0.0);
-        })
-    );
-    println!(
-        "no two finest bands    {:.4}",
-        variant(&|m| {
-            m.residual.fine = [0.0; 3];
-            m.residual.weights.iter_mut().for_each(|w| {
-                w[0] = 0.0;
-                if w.len() > 1 {
-                    w[1] = 0.0;
-                }
-            });
-        })
-    );
+    println!("no finest band at all  {:.4}", without_finest(1));
+    println!("no two finest bands    {:.4}", without_finest(2));
     println!(
         "ramp alone (no residual, no tone) {:.4}",
         variant(&|m| {
