@@ -31,6 +31,8 @@
 //!   `CORPUS_LAB_DEV_FOLDS=K` scores each development photo with a discriminant trained on the
 //!   corpus and on the development photos of the other K − 1 folds by photo (their manifest's
 //!   first family as the label): what the development photos would add as training textures.
+//!   `CORPUS_LAB_FEATURES=PATH` writes every training quadrant's and development patch's
+//!   features (`tools/classifier_lab.py` scores other classifiers on them).
 //! - `corpus_lab table LABELS DIR OUT`: the same discriminant (setting chosen on the corpus),
 //!   trained on every labelled texture and written as the product's table
 //!   (`analyzer/src/family_classifier_table.rs`, read by `proctex::family_classifier`); it
@@ -542,6 +544,47 @@ fn bootstrap(
     );
 }
 
+/// `CORPUS_LAB_FEATURES=PATH`: every training quadrant's and development patch's classifier
+/// features as TSV (`train`, file, quadrant, class; `dev`, file, quadrant, labels joined by `/`),
+/// for classifiers measured outside Rust.
+fn dump_features(
+    path: &std::ffi::OsStr,
+    corpus: &[Texture],
+    dev: &[(lab_common::Patch, Descriptor)],
+    names: &[&str],
+    harmonics: usize,
+) {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let row = |out: &mut String, head: String, d: &Descriptor| {
+        let f: Vec<String> = lab_features(d, harmonics)
+            .iter()
+            .map(|v| format!("{v}"))
+            .collect();
+        writeln!(out, "{head}\t{}", f.join("\t")).unwrap();
+    };
+    for t in corpus {
+        for (q, d) in t.quadrants.iter().enumerate() {
+            row(
+                &mut out,
+                format!("train\t{}\t{q}\t{}", t.file, names[t.class]),
+                d,
+            );
+        }
+    }
+    let mut seen: std::collections::HashMap<&str, usize> = Default::default();
+    for (p, d) in dev {
+        let q = seen.entry(&p.file).or_insert(0);
+        row(
+            &mut out,
+            format!("dev\t{}\t{q}\t{}", p.file, p.labels.join("/")),
+            d,
+        );
+        *q += 1;
+    }
+    std::fs::write(path, out).unwrap();
+}
+
 fn eval(labels: &str, dir: &str, dev: &str) {
     let names = class_names();
     let noise = names.len() - 1;
@@ -566,6 +609,9 @@ fn eval(labels: &str, dir: &str, dev: &str) {
         .and_then(|v| v.parse().ok())
     {
         bootstrap(&corpus, &dev_patches, n, harmonics, ridge);
+    }
+    if let Some(path) = std::env::var_os("CORPUS_LAB_FEATURES") {
+        dump_features(&path, &corpus, &dev_patches, &names, harmonics);
     }
     let all: Vec<&Texture> = corpus.iter().collect();
     let c = Classifier::train(&all, names.len(), harmonics, ridge);
@@ -658,63 +704,14 @@ fn eval(labels: &str, dir: &str, dev: &str) {
     }
 }
 
-/// An RGB565 colour as 8-bit RGB.
-fn rgb565(c: u16) -> [f32; 3] {
-    let r = ((c >> 11) & 31) as f32 / 31.0;
-    let g = ((c >> 5) & 63) as f32 / 63.0;
-    let b = (c & 31) as f32 / 31.0;
-    [r, g, b]
-}
-
-/// The largest mip level of a DXT1 or DXT5 DDS file no wider than `max_side`, as RGB (0–1,
-/// sRGB-encoded values), with its side; `None` for other formats.
-fn decode_dds(b: &[u8], max_side: usize) -> Option<(usize, Vec<[f32; 3]>)> {
-    let u32_at = |i: usize| u32::from_le_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]) as usize;
-    let (h, w) = (u32_at(12), u32_at(16));
-    let block = match &b[84..88] {
-        b"DXT1" => 8,
-        b"DXT5" => 16,
-        _ => return None,
-    };
-    if w != h || w < 128 {
-        return None;
-    }
-    let (mut side, mut offset) = (w, 128);
-    while side > max_side {
-        offset += (side / 4) * (side / 4) * block;
-        side /= 2;
-    }
-    let mut out = vec![[0.0f32; 3]; side * side];
-    for by in 0..side / 4 {
-        for bx in 0..side / 4 {
-            let at = offset + (by * (side / 4) + bx) * block + block - 8;
-            let c0 = u16::from_le_bytes([b[at], b[at + 1]]);
-            let c1 = u16::from_le_bytes([b[at + 2], b[at + 3]]);
-            let (p0, p1) = (rgb565(c0), rgb565(c1));
-            let mix = |t: f32| -> [f32; 3] { [0, 1, 2].map(|k| p0[k] * (1.0 - t) + p1[k] * t) };
-            // DXT1's three-colour mode (c0 <= c1) has black for its fourth; DXT5 has none.
-            let palette = if c0 > c1 || block == 16 {
-                [p0, p1, mix(1.0 / 3.0), mix(2.0 / 3.0)]
-            } else {
-                [p0, p1, mix(0.5), [0.0; 3]]
-            };
-            let bits = u32::from_le_bytes([b[at + 4], b[at + 5], b[at + 6], b[at + 7]]);
-            for i in 0..16 {
-                let (x, y) = (bx * 4 + i % 4, by * 4 + i / 4);
-                out[y * side + x] = palette[((bits >> (2 * i)) & 3) as usize];
-            }
-        }
-    }
-    Some((side, out))
-}
-
 /// Every DXT1/DXT5 DDS file in `dir` written to `out` as a PNG at most 512 wide.
 fn dds(dir: &str, out: &str) {
     std::fs::create_dir_all(out).unwrap();
     let mut n = 0;
     for e in std::fs::read_dir(dir).unwrap() {
         let path = e.unwrap().path();
-        let Some((side, px)) = decode_dds(&std::fs::read(&path).unwrap(), 512) else {
+        let Some((side, px)) = lab_common::dds::decode_dds(&std::fs::read(&path).unwrap(), 512)
+        else {
             continue;
         };
         let mut img = image::RgbImage::new(side as u32, side as u32);

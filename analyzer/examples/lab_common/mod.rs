@@ -11,6 +11,9 @@ pub mod topology;
 // Only the laboratories of one quadrant's ranking fits take a quadrant as the ranking sees it.
 #[allow(dead_code)]
 pub mod ranked;
+// Only the corpus laboratory decodes DDS textures.
+#[allow(dead_code)]
+pub mod dds;
 
 use proctex::cues::blur;
 use proctex::db::sample;

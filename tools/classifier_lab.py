@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""Other classifiers and other features for the family classifier, measured outside Rust
+(laboratory; docs/devset.md, "Other classifiers over the same features; texture-unit features").
+
+The product's classifier is Fisher's linear discriminant (`analyzer/examples/corpus_lab.rs`,
+`proctex::family_classifier`). This script reads the features `corpus_lab eval` writes with
+`CORPUS_LAB_FEATURES=PATH` (one row per training quadrant and development patch) and scores
+other classifiers the same way `corpus_lab eval` scores the discriminant: trained on the corpus
+alone, each development patch's nearest family (the most probable class other than noise)
+labelled or not, the first class, the first three, and stochastic patches whose first class is
+noise. The development set is never trained on and no setting is chosen on it (each classifier
+is run at library defaults or one fixed regularisation).
+
+  classifier_lab.py classifiers FEATURES.tsv [EXTRA.tsv]   (EXTRA: more features per row, as `lbp` writes)
+  classifier_lab.py lbp FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (rotation-invariant uniform
+      local binary patterns, Ojala et al. 2002, of each row's quadrant: P=8 R=1, 2; P=16 R=4, 8;
+      and P=8 R=1 on the quadrant reduced 2× and 4×; square roots of the histograms)
+
+  classifier_lab.py gate RUN.jsonl DUMP   (a two-class discriminant as the gate between the noise
+      model and the families: DUMP is `corpus_lab eval`'s stderr with `CORPUS_LAB_DUMP=1`, trained
+      on the labels with every family renamed `brick` (one structured class); where the run chose
+      the noise model and the patch's margin (the noise class's distance minus the structured
+      class's) exceeds t, the classifier's nearest family of the run instead; t chosen on 4 folds
+      by photo as the most structured patches labelled among those keeping >= 95 % of the
+      stochastic patches served, a switched stochastic patch counted as not served)
+
+Needs numpy, scikit-learn and (for `lbp`) scikit-image and Pillow: `pip install scikit-learn
+scikit-image pillow`.
+"""
+import json
+import sys
+import warnings
+
+import numpy as np
+
+warnings.filterwarnings("ignore")
+
+
+def load(path, extra=None):
+    ext = {}
+    if extra:
+        for line in open(extra):
+            t = line.rstrip("\n").split("\t")
+            ext[(t[0], t[1], t[2])] = [float(v) for v in t[3:]]
+    train, dev = [], []
+    for line in open(path):
+        t = line.rstrip("\n").split("\t")
+        x = [float(v) for v in t[4:]] + ext.get((t[0], t[1], t[2]), [])
+        (train if t[0] == "train" else dev).append((t[3], np.array(x)))
+    return train, dev
+
+
+def score(model, train, dev, name):
+    x = np.array([r[1] for r in train])
+    y = np.array([r[0] for r in train])
+    model.fit(x, y)
+    classes = list(model.classes_)
+    family = first = top3 = structured = stochastic = kept = 0
+    for (labels, _), p in zip(dev, model.predict_proba(np.array([r[1] for r in dev]))):
+        labels = labels.split("/")
+        order = [classes[i] for i in np.argsort(-p)]
+        if labels == ["noise"]:
+            stochastic += 1
+            kept += order[0] == "noise"
+        else:
+            structured += 1
+            family += next(c for c in order if c != "noise") in labels
+            first += order[0] in labels
+            top3 += any(c in labels for c in order[:3])
+    print(f"{name:32s} nearest family {family}/{structured}, first {first}, top three {top3}; "
+          f"stochastic -> noise {kept}/{stochastic}", flush=True)
+
+
+def classifiers(path, extra=None):
+    from sklearn.discriminant_analysis import LinearDiscriminantAnalysis
+    from sklearn.ensemble import (ExtraTreesClassifier, HistGradientBoostingClassifier,
+                                  RandomForestClassifier)
+    from sklearn.linear_model import LogisticRegression
+    from sklearn.pipeline import make_pipeline
+    from sklearn.preprocessing import StandardScaler
+    from sklearn.svm import SVC
+    train, dev = load(path, extra)
+    models = {
+        "LDA, shrinkage (Ledoit-Wolf)": make_pipeline(
+            StandardScaler(), LinearDiscriminantAnalysis(solver="lsqr", shrinkage="auto")),
+        "logistic regression C=1": make_pipeline(StandardScaler(),
+                                                 LogisticRegression(C=1, max_iter=5000)),
+        "logistic regression C=0.1": make_pipeline(StandardScaler(),
+                                                   LogisticRegression(C=0.1, max_iter=5000)),
+        "random forest 500": RandomForestClassifier(500, n_jobs=2, random_state=0),
+        "random forest 500, balanced": RandomForestClassifier(
+            500, n_jobs=2, random_state=0, class_weight="balanced"),
+        "extra trees 500": ExtraTreesClassifier(500, n_jobs=2, random_state=0),
+        "gradient boosting (histogram)": HistGradientBoostingClassifier(random_state=0),
+        "SVM, RBF, C=3": make_pipeline(StandardScaler(),
+                                       SVC(C=3, probability=True, random_state=0)),
+    }
+    for name, model in models.items():
+        score(model, train, dev, name)
+
+
+def lbp(path, corpus_dir, dev_dir, out):
+    from PIL import Image
+    from skimage.feature import local_binary_pattern
+
+    def quadrants(file):
+        im = Image.open(file).convert("RGB")
+        w, h = im.size
+        for qx, qy in [(0, 0), (1, 0), (0, 1), (1, 1)]:
+            q = im.crop((qx * (w // 2), qy * (h // 2), (qx + 1) * (w // 2), (qy + 1) * (h // 2)))
+            if max(q.size) > 256:  # as the ranking reduces a patch (retrieve::RANK_SIZE)
+                s = 256 / max(q.size)
+                q = q.resize((round(q.size[0] * s), round(q.size[1] * s)), Image.BOX)
+            yield np.asarray(q, dtype=np.float64) @ [0.2126, 0.7152, 0.0722]
+
+    def histogram(g, p, r):
+        c = local_binary_pattern(g, p, r, "uniform").astype(int).ravel()
+        h = np.bincount(c, minlength=p + 2)[:p + 2].astype(float)
+        return list(np.sqrt(h / h.sum()))
+
+    def features(g):
+        f = []
+        for p, r in [(8, 1), (8, 2), (16, 4), (16, 8)]:
+            f += histogram(g, p, r)
+        for k in (2, 4):
+            h, w = g.shape
+            f += histogram(g[:h // k * k, :w // k * k].reshape(h // k, k, w // k, k).mean((1, 3)),
+                           8, 1)
+        return f
+
+    done = set()
+    with open(out, "w") as o:
+        for line in open(path):
+            t = line.split("\t", 3)
+            if (t[0], t[1]) in done:
+                continue
+            done.add((t[0], t[1]))
+            folder = corpus_dir if t[0] == "train" else dev_dir
+            for q, g in enumerate(quadrants(f"{folder}/{t[1]}")):
+                o.write("\t".join([t[0], t[1], str(q)] + ["%.6g" % v for v in features(g)]) + "\n")
+
+
+def gate(run, dump):
+    from devset_occam_cv import fold_of, patch_overall
+    quadrants = ["top-left", "top-right", "bottom-left", "bottom-right"]  # the lab's order
+    margin, seen = {}, {}
+    for line in open(dump):
+        if line.startswith("dump\t"):
+            t = line.rstrip("\n").split("\t")
+            k = seen.get(t[1], 0)
+            seen[t[1]] = k + 1
+            margin[(t[1], quadrants[k])] = float(t[4])
+    rows = []
+    for line in open(run):
+        if line.startswith('{"photo"'):
+            p = json.loads(line)["photo"]
+            for i, c in enumerate(p["choices"]):
+                # Served by the run: the noise model, or a family no farther than it.
+                c = dict(c, served=c["chosen"] == "noise"
+                         or patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
+                rows.append((p["entry"]["file"], p["entry"]["families"], c,
+                             margin[(p["entry"]["file"], c["patch"])]))
+
+    def tally(sel, t):
+        labelled = served = 0
+        for _, labels, c, m in sel:
+            chosen = c["chosen"]
+            if chosen == "noise" and m > t:
+                chosen = next(k for k in c["classifier"] if k != "noise")
+            if labels == ["noise"]:
+                served += chosen == c["chosen"] and c["served"]
+            else:
+                labelled += chosen in labels
+        return labelled, served
+
+    grid = [x / 4 for x in range(-40, 41)] + [float("inf")]
+    print("the run: labelled %d, served %d" % tally(rows, float("inf")))
+    for t in [-4, -2, 0, 1, 2, 3]:
+        print(f"t {t}: labelled %d, served %d" % tally(rows, t))
+    held, chosen = [0, 0], []
+    for f in range(4):
+        train = [r for r in rows if fold_of(r[0], 4) != f]
+        stochastic = sum(r[1] == ["noise"] for r in train)
+        ok = [(tally(train, t), t) for t in grid if tally(train, t)[1] >= 0.95 * stochastic]
+        t = max(ok)[1]
+        chosen.append(t)
+        a, b = tally([r for r in rows if fold_of(r[0], 4) == f], t)
+        held = [held[0] + a, held[1] + b]
+    print(f"held out (t chosen on the other folds {chosen}): labelled {held[0]}, served {held[1]}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) >= 3 and sys.argv[1] == "classifiers":
+        classifiers(*sys.argv[2:4])
+    elif len(sys.argv) == 4 and sys.argv[1] == "gate":
+        gate(*sys.argv[2:])
+    elif len(sys.argv) == 6 and sys.argv[1] == "lbp":
+        lbp(*sys.argv[2:])
+    else:
+        sys.exit(__doc__)
