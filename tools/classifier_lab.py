@@ -16,6 +16,16 @@ is run at library defaults or one fixed regularisation).
       local binary patterns, Ojala et al. 2002, of each row's quadrant: P=8 R=1, 2; P=16 R=4, 8;
       and P=8 R=1 on the quadrant reduced 2× and 4×; square roots of the histograms)
 
+  classifier_lab.py phases FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (the units of each quadrant's
+      bright and dark phases: the luminance smoothed by a Gaussian of sigma 1, 2 and 4, split at
+      its local mean (a wrapped box of a quarter of the side); per phase, the square root of its
+      components' area-weighted mean area over the side, their count per 10^4 pixels (log1p),
+      the largest one's share, their area-weighted elongation (half the log ratio of their
+      second moments' eigenvalues, components of at least 8 pixels) and the phase's share)
+  classifier_lab.py unit_colours FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (the same phases'
+      components of at least 16 pixels: the log ratio of their mean colours' variance between
+      components to the colour variance within them, of the red and blue channels' part of the
+      former, and their count per 10^4 pixels)
   classifier_lab.py gate RUN.jsonl DUMP   (a two-class discriminant as the gate between the noise
       model and the families: DUMP is `corpus_lab eval`'s stderr with `CORPUS_LAB_DUMP=1`, trained
       on the labels with every family renamed `brick` (one structured class); where the run chose
@@ -24,8 +34,8 @@ is run at library defaults or one fixed regularisation).
       by photo as the most structured patches labelled among those keeping >= 95 % of the
       stochastic patches served, a switched stochastic patch counted as not served)
 
-Needs numpy, scikit-learn and (for `lbp`) scikit-image and Pillow: `pip install scikit-learn
-scikit-image pillow`.
+Needs numpy, scikit-learn and (for `lbp`, `phases`) scikit-image, SciPy and Pillow: `pip install
+scikit-learn scikit-image scipy pillow`.
 """
 import json
 import sys
@@ -99,19 +109,37 @@ def classifiers(path, extra=None):
         score(model, train, dev, name)
 
 
-def lbp(path, corpus_dir, dev_dir, out):
+def quadrants(file, colour=False):
+    """A texture's four quadrants' luminance (TL, TR, BL, BR; RGB in 0–1 with `colour`), each
+    reduced to at most 256 pixels a side as the ranking reduces a patch (retrieve::RANK_SIZE)."""
     from PIL import Image
-    from skimage.feature import local_binary_pattern
+    im = Image.open(file).convert("RGB")
+    w, h = im.size
+    for qx, qy in [(0, 0), (1, 0), (0, 1), (1, 1)]:
+        q = im.crop((qx * (w // 2), qy * (h // 2), (qx + 1) * (w // 2), (qy + 1) * (h // 2)))
+        if max(q.size) > 256:
+            s = 256 / max(q.size)
+            q = q.resize((round(q.size[0] * s), round(q.size[1] * s)), Image.BOX)
+        rgb = np.asarray(q, dtype=np.float64)
+        yield rgb / 255 if colour else rgb @ [0.2126, 0.7152, 0.0722]
 
-    def quadrants(file):
-        im = Image.open(file).convert("RGB")
-        w, h = im.size
-        for qx, qy in [(0, 0), (1, 0), (0, 1), (1, 1)]:
-            q = im.crop((qx * (w // 2), qy * (h // 2), (qx + 1) * (w // 2), (qy + 1) * (h // 2)))
-            if max(q.size) > 256:  # as the ranking reduces a patch (retrieve::RANK_SIZE)
-                s = 256 / max(q.size)
-                q = q.resize((round(q.size[0] * s), round(q.size[1] * s)), Image.BOX)
-            yield np.asarray(q, dtype=np.float64) @ [0.2126, 0.7152, 0.0722]
+
+def write_features(path, corpus_dir, dev_dir, out, features, colour=False):
+    """`features` of every quadrant of the textures and photos that FEATURES names."""
+    done = set()
+    with open(out, "w") as o:
+        for line in open(path):
+            t = line.split("\t", 3)
+            if (t[0], t[1]) in done:
+                continue
+            done.add((t[0], t[1]))
+            folder = corpus_dir if t[0] == "train" else dev_dir
+            for q, g in enumerate(quadrants(f"{folder}/{t[1]}", colour)):
+                o.write("\t".join([t[0], t[1], str(q)] + ["%.6g" % v for v in features(g)]) + "\n")
+
+
+def lbp(path, corpus_dir, dev_dir, out):
+    from skimage.feature import local_binary_pattern
 
     def histogram(g, p, r):
         c = local_binary_pattern(g, p, r, "uniform").astype(int).ravel()
@@ -128,16 +156,72 @@ def lbp(path, corpus_dir, dev_dir, out):
                            8, 1)
         return f
 
-    done = set()
-    with open(out, "w") as o:
-        for line in open(path):
-            t = line.split("\t", 3)
-            if (t[0], t[1]) in done:
-                continue
-            done.add((t[0], t[1]))
-            folder = corpus_dir if t[0] == "train" else dev_dir
-            for q, g in enumerate(quadrants(f"{folder}/{t[1]}")):
-                o.write("\t".join([t[0], t[1], str(q)] + ["%.6g" % v for v in features(g)]) + "\n")
+    write_features(path, corpus_dir, dev_dir, out, features)
+
+
+def phases(path, corpus_dir, dev_dir, out):
+    from scipy import ndimage
+
+    def stats(mask):
+        labels, n = ndimage.label(mask)
+        if n == 0:
+            return [0, 0, 0, 0, 0]
+        areas = np.bincount(labels.ravel())[1:].astype(float)
+        size = np.sqrt((areas ** 2).sum() / areas.sum()) / mask.shape[0]
+        count = np.log1p(n / mask.size * 1e4)
+        largest = areas.max() / areas.sum()
+        ys, xs = np.nonzero(labels > 0)
+        of = labels[ys, xs]
+        elongation, weight = [], []
+        for k in (np.nonzero(areas >= 8)[0] + 1)[:400]:
+            sel = of == k
+            ev = np.linalg.eigvalsh(np.cov(np.vstack([xs[sel], ys[sel]])))
+            elongation.append(np.log((ev[1] + 1e-3) / (ev[0] + 1e-3)) / 2)
+            weight.append(sel.sum())
+        elongated = np.average(elongation, weights=weight) if weight else 0
+        return [size, count, largest, elongated, mask.mean()]
+
+    def features(g):
+        f = []
+        for sigma in (1, 2, 4):
+            smooth = ndimage.gaussian_filter(g, sigma, mode="wrap")
+            bright = smooth > ndimage.uniform_filter(smooth, max(3, min(g.shape) // 4), mode="wrap")
+            f += stats(bright) + stats(~bright)
+        return f
+
+    write_features(path, corpus_dir, dev_dir, out, features)
+
+
+def unit_colours(path, corpus_dir, dev_dir, out):
+    from scipy import ndimage
+
+    def features(rgb):
+        g = rgb @ [0.2126, 0.7152, 0.0722]
+        f = []
+        for sigma in (1, 2, 4):
+            smooth = ndimage.gaussian_filter(g, sigma, mode="wrap")
+            bright = smooth > ndimage.uniform_filter(smooth, max(3, min(g.shape) // 4), mode="wrap")
+            for mask in (bright, ~bright):
+                labels, n = ndimage.label(mask)
+                index = np.arange(1, n + 1)
+                area = ndimage.sum(np.ones_like(g), labels, index)
+                keep = index[area >= 16]
+                if len(keep) < 2:
+                    f += [0, 0, 0]
+                    continue
+                a = area[keep - 1]
+                between, within = [], []
+                for c in range(3):
+                    mean = ndimage.mean(rgb[..., c], labels, keep)
+                    between.append(np.average((mean - np.average(mean, weights=a)) ** 2, weights=a))
+                    within.append(np.average(ndimage.variance(rgb[..., c], labels, keep), weights=a))
+                between = np.array(between)
+                f += [np.log((between.sum() + 1e-6) / (sum(within) + 1e-6)),
+                      np.log((between[0] + between[2] + 1e-6) / (between.sum() + 1e-6)),
+                      np.log(len(keep) / mask.size * 1e4)]
+        return f
+
+    write_features(path, corpus_dir, dev_dir, out, features, colour=True)
 
 
 def gate(run, dump):
@@ -196,5 +280,9 @@ if __name__ == "__main__":
         gate(*sys.argv[2:])
     elif len(sys.argv) == 6 and sys.argv[1] == "lbp":
         lbp(*sys.argv[2:])
+    elif len(sys.argv) == 6 and sys.argv[1] == "phases":
+        phases(*sys.argv[2:])
+    elif len(sys.argv) == 6 and sys.argv[1] == "unit_colours":
+        unit_colours(*sys.argv[2:])
     else:
         sys.exit(__doc__)
