@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Other classifiers and other features for the family classifier, measured outside Rust
-(laboratory; docs/devset.md, "Other classifiers over the same features; texture-unit features").
+r"""Other classifiers and other features for the family classifier, measured outside Rust
+(laboratory; docs/devset.md, "A two-class gate, the noise model's margin, a floor on the
+lattices' scale, other classifiers and features").
 
 The product's classifier is Fisher's linear discriminant (`analyzer/examples/corpus_lab.rs`,
 `proctex::family_classifier`). This script reads the features `corpus_lab eval` writes with
@@ -15,7 +16,6 @@ is run at library defaults or one fixed regularisation).
   classifier_lab.py lbp FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (rotation-invariant uniform
       local binary patterns, Ojala et al. 2002, of each row's quadrant: P=8 R=1, 2; P=16 R=4, 8;
       and P=8 R=1 on the quadrant reduced 2× and 4×; square roots of the histograms)
-
   classifier_lab.py phases FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (the units of each quadrant's
       bright and dark phases: the luminance smoothed by a Gaussian of sigma 1, 2 and 4, split at
       its local mean (a wrapped box of a quarter of the side); per phase, the square root of its
@@ -28,14 +28,15 @@ is run at library defaults or one fixed regularisation).
       former, and their count per 10^4 pixels)
   classifier_lab.py gate RUN.jsonl DUMP   (a two-class discriminant as the gate between the noise
       model and the families: DUMP is `corpus_lab eval`'s stderr with `CORPUS_LAB_DUMP=1`, trained
-      on the labels with every family renamed `brick` (one structured class); where the run chose
-      the noise model and the patch's margin (the noise class's distance minus the structured
-      class's) exceeds t, the classifier's nearest family of the run instead; t chosen on 4 folds
-      by photo as the most structured patches labelled among those keeping >= 95 % of the
-      stochastic patches served, a switched stochastic patch counted as not served)
+      on the labels with every family renamed `brick` (one structured class:
+      awk -F'\t' 'BEGIN{OFS="\t"} !/^#/ && NF {if ($2 != "noise") $2 = "brick"; print}' LABELS...);
+      where the run chose the noise model and the patch's margin (the noise class's distance minus
+      the structured class's) exceeds t, the classifier's nearest family of the run instead; t
+      chosen on 4 folds by photo as the most structured patches labelled among those keeping
+      >= 95 % of the stochastic patches served, a switched stochastic patch counted as not served)
 
-Needs numpy, scikit-learn and (for `lbp`, `phases`) scikit-image, SciPy and Pillow: `pip install
-scikit-learn scikit-image scipy pillow`.
+Needs numpy, scikit-learn and (for `lbp`, `phases`, `unit_colours`) scikit-image, SciPy and
+Pillow: `pip install scikit-learn scikit-image scipy pillow`.
 """
 import json
 import sys
