@@ -160,6 +160,15 @@ def lbp(path, corpus_dir, dev_dir, out):
     write_features(path, corpus_dir, dev_dir, out, features)
 
 
+def bright_phases(g):
+    """The luminance `g` smoothed by a Gaussian of sigma 1, 2 and 4, each split at its local mean
+    (a wrapped box of a quarter of the side): where it is brighter."""
+    from scipy import ndimage
+    for sigma in (1, 2, 4):
+        smooth = ndimage.gaussian_filter(g, sigma, mode="wrap")
+        yield smooth > ndimage.uniform_filter(smooth, max(3, min(g.shape) // 4), mode="wrap")
+
+
 def phases(path, corpus_dir, dev_dir, out):
     from scipy import ndimage
 
@@ -184,9 +193,7 @@ def phases(path, corpus_dir, dev_dir, out):
 
     def features(g):
         f = []
-        for sigma in (1, 2, 4):
-            smooth = ndimage.gaussian_filter(g, sigma, mode="wrap")
-            bright = smooth > ndimage.uniform_filter(smooth, max(3, min(g.shape) // 4), mode="wrap")
+        for bright in bright_phases(g):
             f += stats(bright) + stats(~bright)
         return f
 
@@ -199,9 +206,7 @@ def unit_colours(path, corpus_dir, dev_dir, out):
     def features(rgb):
         g = rgb @ [0.2126, 0.7152, 0.0722]
         f = []
-        for sigma in (1, 2, 4):
-            smooth = ndimage.gaussian_filter(g, sigma, mode="wrap")
-            bright = smooth > ndimage.uniform_filter(smooth, max(3, min(g.shape) // 4), mode="wrap")
+        for bright in bright_phases(g):
             for mask in (bright, ~bright):
                 labels, n = ndimage.label(mask)
                 index = np.arange(1, n + 1)
@@ -266,7 +271,7 @@ def gate(run, dump):
     for f in range(4):
         train = [r for r in rows if fold_of(r[0], 4) != f]
         stochastic = sum(r[1] == ["noise"] for r in train)
-        ok = [(tally(train, t), t) for t in grid if tally(train, t)[1] >= 0.95 * stochastic]
+        ok = [(r, t) for r, t in ((tally(train, t), t) for t in grid) if r[1] >= 0.95 * stochastic]
         t = max(ok)[1]
         chosen.append(t)
         a, b = tally([r for r in rows if fold_of(r[0], 4) == f], t)
