@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 r"""Other classifiers and other features for the family classifier, measured outside Rust
 (laboratory; docs/devset.md, "A two-class gate, the noise model's margin, a floor on the
-lattices' scale, other classifiers and features").
+lattices' scale, other classifiers and features" and "Scattering features").
 
 The product's classifier is Fisher's linear discriminant (`analyzer/examples/corpus_lab.rs`,
 `proctex::family_classifier`). This script reads the features `corpus_lab eval` writes with
@@ -12,7 +12,8 @@ labelled or not, the first class, the first three, and stochastic patches whose 
 noise. The development set is never trained on and no setting is chosen on it (each classifier
 is run at library defaults or one fixed regularisation).
 
-  classifier_lab.py classifiers FEATURES.tsv [EXTRA.tsv]   (EXTRA: more features per row, as `lbp` writes)
+  classifier_lab.py classifiers FEATURES.tsv [EXTRA.tsv [alone]]   (EXTRA: more features per row, as
+      `lbp` writes; `alone`: EXTRA's features without FEATURES')
   classifier_lab.py lbp FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (rotation-invariant uniform
       local binary patterns, Ojala et al. 2002, of each row's quadrant: P=8 R=1, 2; P=16 R=4, 8;
       and P=8 R=1 on the quadrant reduced 2× and 4×; square roots of the histograms)
@@ -34,9 +35,19 @@ is run at library defaults or one fixed regularisation).
       the structured class's) exceeds t, the classifier's nearest family of the run instead; t
       chosen on 4 folds by photo as the most structured patches labelled among those keeping
       >= 95 % of the stochastic patches served, a switched stochastic patch counted as not served)
+  classifier_lab.py scattering FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (rotation-invariant
+      scattering of each quadrant's luminance, Bruna & Mallat 2013, Sifre & Mallat 2013: Morlet
+      wavelets of 5 scales and 8 orientations, first and second order averaged over space;
+      `scattering_features`; about 0.4 s a quadrant, 25 minutes for the four batches on 2 cores)
+  classifier_lab.py noise_renders DEV_DIR PROCTEX OUT_DIR [SEED]   (the noise model's render of
+      every development patch, `proctex synth --crop QUADRANT --model noise --seed SEED`)
+  classifier_lab.py render_scattering OUT_DIR RENDERS.tsv   (those renders' scattering)
+  classifier_lab.py scattering_gate RUN.jsonl FEATURES.tsv SCATTERING.tsv RENDERS.tsv[,RENDERS2.tsv…]
+      (the scattering's structured-vs-noise log odds, of the patch and of the patch minus its noise
+      render's, as `gate`'s margin; trained on the corpus alone; t chosen on 4 folds as `gate`)
 
-Needs numpy, scikit-learn and (for `lbp`, `phases`, `unit_colours`) scikit-image, SciPy and
-Pillow: `pip install scikit-learn scikit-image scipy pillow`.
+Needs numpy, scikit-learn and (for `lbp`, `phases`, `unit_colours`, `scattering`) scikit-image,
+SciPy and Pillow: `pip install scikit-learn scikit-image scipy pillow`.
 """
 import json
 import sys
@@ -82,7 +93,7 @@ def score(model, train, dev, name):
           f"stochastic -> noise {kept}/{stochastic}", flush=True)
 
 
-def classifiers(path, extra=None):
+def classifiers(path, extra=None, alone=None):
     from sklearn.discriminant_analysis import LinearDiscriminantAnalysis
     from sklearn.ensemble import (ExtraTreesClassifier, HistGradientBoostingClassifier,
                                   RandomForestClassifier)
@@ -91,6 +102,9 @@ def classifiers(path, extra=None):
     from sklearn.preprocessing import StandardScaler
     from sklearn.svm import SVC
     train, dev = load(path, extra)
+    if alone == "alone":  # EXTRA's features without FEATURES'
+        width = len(load(path)[0][0][1])
+        train, dev = ([(y, x[width:]) for y, x in rows] for rows in (train, dev))
     models = {
         "LDA, shrinkage (Ledoit-Wolf)": make_pipeline(
             StandardScaler(), LinearDiscriminantAnalysis(solver="lsqr", shrinkage="auto")),
@@ -230,16 +244,118 @@ def unit_colours(path, corpus_dir, dev_dir, out):
     write_features(path, corpus_dir, dev_dir, out, features, colour=True)
 
 
-def gate(run, dump):
-    from devset_occam_cv import fold_of, patch_overall
-    quadrants = ["top-left", "top-right", "bottom-left", "bottom-right"]  # the lab's order
-    margin, seen = {}, {}
-    for line in open(dump):
-        if line.startswith("dump\t"):
-            t = line.rstrip("\n").split("\t")
-            k = seen.get(t[1], 0)
-            seen[t[1]] = k + 1
-            margin[(t[1], quadrants[k])] = float(t[4])
+SCATTERING_J, SCATTERING_L = 5, 8  # scales 1-16 px (a 256-pixel quadrant), orientations
+
+
+def morlet_bank(n):
+    """Morlet wavelets in the frequency domain on an n x n grid (Bruna & Mallat 2013): scale j
+    has envelope width 0.8 * 2^j px and centre frequency 3*pi/4 / 2^j, orientation l is
+    pi * l / L; the envelope is narrower across the orientation by L/4 (as kymatio's slant) and
+    the wavelet has no DC (the Gaussian's share at zero subtracted)."""
+    from scipy import fft
+    w = 2 * np.pi * fft.fftfreq(n)
+    wy, wx = np.meshgrid(w, w, indexing="ij")
+    bank = {}
+    for j in range(SCATTERING_J):
+        sigma, xi = 0.8 * 2 ** j, 3 * np.pi / 4 / 2 ** j
+        for l in range(SCATTERING_L):
+            th = np.pi * l / SCATTERING_L
+            cx, cy = xi * np.cos(th), xi * np.sin(th)
+
+            def envelope(ax, ay):
+                u = ax * np.cos(th) + ay * np.sin(th)
+                v = -ax * np.sin(th) + ay * np.cos(th)
+                return np.exp(-sigma ** 2 * (u ** 2 + (v * SCATTERING_L / 4) ** 2) / 2)
+            beta = envelope(np.array(-cx), np.array(-cy))
+            bank[(j, l)] = (envelope(wx - cx, wy - cy) - beta * envelope(wx, wy)).astype(np.complex64)
+    return bank
+
+
+def scattering_features(g, banks={}):
+    """Rotation-invariant scattering of a luminance image (its square top-left part, normalised
+    to zero mean and unit variance): log of the first order's spatial means averaged over
+    orientations per scale, the first two orientation harmonics' magnitudes relative to it, and
+    the second order's log ratio to the first, ||x * psi_j1,l1| * psi_j2,l2| averaged over
+    space and over l1 at each orientation difference l2 - l1 (Sifre & Mallat 2013): 5 + 10 + 80
+    numbers."""
+    from scipy import fft
+    n = min(g.shape)
+    g = np.asarray(g, dtype=np.float64)[:n, :n]
+    g = (g - g.mean()) / (g.std() + 1e-6)
+    if n not in banks:
+        banks[n] = morlet_bank(n)
+    bank = banks[n]
+    J, L = SCATTERING_J, SCATTERING_L
+    x = fft.fft2(g.astype(np.complex64))
+    s1, s2 = np.zeros((J, L)), np.zeros((J, J, L))
+    for j1 in range(J):
+        for l1 in range(L):
+            u1 = np.abs(fft.ifft2(x * bank[(j1, l1)]))
+            s1[j1, l1] = u1.mean()
+            if j1 < J - 1:
+                u1 = fft.fft2(u1.astype(np.complex64))
+            for j2 in range(j1 + 1, J):
+                for l2 in range(L):
+                    s2[j1, j2, (l2 - l1) % L] += np.abs(fft.ifft2(u1 * bank[(j2, l2)])).mean() / L
+    first = s1.mean(1)
+    f = list(np.log(first))
+    for j in range(J):
+        h = np.fft.fft(s1[j])
+        f += [abs(h[1]) / h[0].real, abs(h[2]) / h[0].real]
+    for j1 in range(J):
+        for j2 in range(j1 + 1, J):
+            f += list(np.log(s2[j1, j2] / first[j1]))
+    return f
+
+
+def scattering(path, corpus_dir, dev_dir, out):
+    write_features(path, corpus_dir, dev_dir, out, scattering_features)
+
+
+def noise_renders(dev_dir, proctex, out_dir, seed="1"):
+    """The noise model's render of every development patch (`proctex synth --crop QUADRANT
+    --model noise --seed SEED`, 1 unless given; two at a time) as OUT_DIR/PHOTO.Q.png, Q in the lab's order."""
+    import os
+    from concurrent.futures import ThreadPoolExecutor
+    import subprocess
+    from PIL import Image
+    jobs = []
+    for line in open(f"{dev_dir}/manifest.tsv"):
+        name = line.split("\t")[0]
+        if line.startswith("#") or not name.endswith((".png", ".jpg")):
+            continue
+        w, h = Image.open(f"{dev_dir}/{name}").size
+        for q, (qx, qy) in enumerate([(0, 0), (1, 0), (0, 1), (1, 1)]):
+            jobs.append([proctex, "synth", f"{dev_dir}/{name}", "--crop",
+                         f"{qx * (w // 2)},{qy * (h // 2)},{w // 2},{h // 2}", "--model", "noise",
+                         "--seed", seed, "-o", os.path.join(out_dir, f"{name}.{q}.png")])
+    with ThreadPoolExecutor(2) as pool:
+        for r in pool.map(lambda j: subprocess.run(j, capture_output=True), jobs):
+            r.check_returncode()
+
+
+def render_scattering(render_dir, out):
+    """`scattering_features` of the renders `noise_renders` wrote (reduced to at most 256 pixels
+    a side, as `quadrants` reduces a patch), one row per development patch."""
+    import os
+    from PIL import Image
+    with open(out, "w") as o:
+        for f in sorted(os.listdir(render_dir)):
+            im = Image.open(os.path.join(render_dir, f)).convert("RGB")
+            if max(im.size) > 256:
+                s = 256 / max(im.size)
+                im = im.resize((round(im.size[0] * s), round(im.size[1] * s)), Image.BOX)
+            g = np.asarray(im, dtype=np.float64) @ [0.2126, 0.7152, 0.0722]
+            o.write("\t".join(["dev", f[:-6], f[-5]] + ["%.6g" % v for v in scattering_features(g)])
+                    + "\n")
+
+
+QUADRANTS = ["top-left", "top-right", "bottom-left", "bottom-right"]  # the lab's order
+
+
+def run_rows(run):
+    """The run's patches as (photo, its labels, the choice with `served` added)."""
+    from devset_occam_cv import patch_overall
     rows = []
     for line in open(run):
         if line.startswith('{"photo"'):
@@ -248,40 +364,117 @@ def gate(run, dump):
                 # Served by the run: the noise model, or a family no farther than it.
                 c = dict(c, served=c["chosen"] == "noise"
                          or patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
-                rows.append((p["entry"]["file"], p["entry"]["families"], c,
-                             margin[(p["entry"]["file"], c["patch"])]))
+                rows.append((p["entry"]["file"], p["entry"]["families"], c))
+    return rows
 
-    def tally(sel, t):
-        labelled = served = 0
-        for _, labels, c, m in sel:
-            chosen = c["chosen"]
-            if chosen == "noise" and m > t:
-                chosen = next(k for k in c["classifier"] if k != "noise")
-            if labels == ["noise"]:
-                served += chosen == c["chosen"] and c["served"]
-            else:
-                labelled += chosen in labels
-        return labelled, served
 
-    grid = [x / 4 for x in range(-40, 41)] + [float("inf")]
-    print("the run: labelled %d, served %d" % tally(rows, float("inf")))
-    for t in [-4, -2, 0, 1, 2, 3]:
-        print(f"t {t}: labelled %d, served %d" % tally(rows, t))
+def gate_tally(rows, margin, t):
+    """Structured patches labelled and stochastic patches served when, where the run chose the
+    noise model and the patch's margin exceeds t, the run's classifier's nearest family is
+    chosen instead (a switched stochastic patch counted as not served)."""
+    labelled = served = 0
+    for photo, labels, c in rows:
+        chosen = c["chosen"]
+        if chosen == "noise" and margin[(photo, c["patch"])] > t:
+            chosen = next(k for k in c["classifier"] if k != "noise")
+        if labels == ["noise"]:
+            served += chosen == c["chosen"] and c["served"]
+        else:
+            labelled += chosen in labels
+    return labelled, served
+
+
+def gate_cv(rows, margin, grid):
+    """t chosen on 4 folds by photo as the most structured patches labelled among those keeping
+    >= 95 % of the other folds' stochastic patches served (ties: the larger t); the held-out
+    folds' counts and the four t."""
+    from devset_occam_cv import fold_of
     held, chosen = [0, 0], []
     for f in range(4):
         train = [r for r in rows if fold_of(r[0], 4) != f]
         stochastic = sum(r[1] == ["noise"] for r in train)
-        ok = [(r, t) for r, t in ((tally(train, t), t) for t in grid) if r[1] >= 0.95 * stochastic]
+        ok = [(r, t) for r, t in ((gate_tally(train, margin, t), t) for t in grid)
+              if r[1] >= 0.95 * stochastic]
         t = max(ok)[1]
         chosen.append(t)
-        a, b = tally([r for r in rows if fold_of(r[0], 4) == f], t)
+        a, b = gate_tally([r for r in rows if fold_of(r[0], 4) == f], margin, t)
         held = [held[0] + a, held[1] + b]
+    return held, chosen
+
+
+def gate(run, dump):
+    margin, seen = {}, {}
+    for line in open(dump):
+        if line.startswith("dump\t"):
+            t = line.rstrip("\n").split("\t")
+            k = seen.get(t[1], 0)
+            seen[t[1]] = k + 1
+            margin[(t[1], QUADRANTS[k])] = float(t[4])
+    rows = run_rows(run)
+    grid = [x / 4 for x in range(-40, 41)] + [float("inf")]
+    print("the run: labelled %d, served %d" % gate_tally(rows, margin, float("inf")))
+    for t in [-4, -2, 0, 1, 2, 3]:
+        print(f"t {t}: labelled %d, served %d" % gate_tally(rows, margin, t))
+    held, chosen = gate_cv(rows, margin, grid)
     print(f"held out (t chosen on the other folds {chosen}): labelled {held[0]}, served {held[1]}")
 
 
+
+def scattering_gate(run, features, scattering_tsv, renders_tsv):
+    """The scattering features' structured-vs-noise log odds as the gate over the run's choice
+    (`gate_tally`): of the photo's patch alone, and of the patch minus the noise model's render
+    of it (the render as the classifier's null, as the product's `RENDER_NULL_MARGIN` rule).
+    Trained on the corpus alone (every family one structured class, or the eight classes with
+    P(noise)); t chosen on 4 folds by photo (`gate_cv`)."""
+    from sklearn.discriminant_analysis import LinearDiscriminantAnalysis
+    from sklearn.linear_model import LogisticRegression
+    from sklearn.metrics import roc_auc_score
+    from sklearn.pipeline import make_pipeline
+    from sklearn.preprocessing import StandardScaler
+    rows = run_rows(run)
+    with_scattering = load(features, scattering_tsv)
+    width = len(load(features)[0][0][1])
+    train = [(y, x[width:]) for y, x in with_scattering[0]]
+    dev = np.array([x[width:] for _, x in with_scattering[1]])
+    keys = [(t[1], QUADRANTS[int(t[2])]) for t in (line.split("\t", 3) for line in open(features))
+            if t[0] == "dev"]
+    renders = []
+    for path in renders_tsv.split(","):
+        render = {}
+        for line in open(path):
+            t = line.rstrip("\n").split("\t")
+            render[(t[1], QUADRANTS[int(t[2])])] = [float(v) for v in t[3:]]
+        renders.append(np.array([render[k] for k in keys]))
+    x, y = np.array([r[1] for r in train]), np.array([r[0] for r in train])
+    structured = [labels != ["noise"] for _, labels, _ in rows]
+    print("the run: labelled %d, served %d" % gate_tally(rows, {k: 0 for k in keys}, float("inf")))
+    models = {
+        "LDA, shrinkage": lambda: make_pipeline(
+            StandardScaler(), LinearDiscriminantAnalysis(solver="lsqr", shrinkage="auto")),
+        "logistic regression C=0.1": lambda: make_pipeline(
+            StandardScaler(), LogisticRegression(C=0.1, max_iter=5000)),
+    }
+    for name, model in models.items():
+        for two in (True, False):
+            m = model().fit(x, np.where(y == "noise", "noise", "structured") if two else y)
+            noise = list(m.classes_).index("noise")
+
+            def odds(a):
+                p = m.predict_proba(a)[:, noise]
+                return np.log(1 - p + 1e-6) - np.log(p + 1e-6)
+            for null, margin in (("photo", odds(dev)), ("photo - render", odds(dev) - np.mean([odds(r) for r in renders], 0))):
+                margin = dict(zip(keys, margin.tolist()))
+                at = sorted(set(margin.values()))
+                grid = [(a + b) / 2 for a, b in zip(at, at[1:])] + [float("inf")]
+                held, chosen = gate_cv(rows, margin, grid)
+                auc = roc_auc_score(structured, [margin[(p, c["patch"])] for p, _, c in rows])
+                print(f"{name}, {'two classes' if two else 'eight classes'}, {null}: AUC {auc:.3f}, "
+                      f"held out labelled {held[0]}, served {held[1]} (t "
+                      + ", ".join("%.2f" % t for t in chosen) + ")")
+
 if __name__ == "__main__":
     if len(sys.argv) >= 3 and sys.argv[1] == "classifiers":
-        classifiers(*sys.argv[2:4])
+        classifiers(*sys.argv[2:5])
     elif len(sys.argv) == 4 and sys.argv[1] == "gate":
         gate(*sys.argv[2:])
     elif len(sys.argv) == 6 and sys.argv[1] == "lbp":
@@ -290,5 +483,13 @@ if __name__ == "__main__":
         phases(*sys.argv[2:])
     elif len(sys.argv) == 6 and sys.argv[1] == "unit_colours":
         unit_colours(*sys.argv[2:])
+    elif len(sys.argv) == 6 and sys.argv[1] == "scattering":
+        scattering(*sys.argv[2:])
+    elif len(sys.argv) in (5, 6) and sys.argv[1] == "noise_renders":
+        noise_renders(*sys.argv[2:])
+    elif len(sys.argv) == 4 and sys.argv[1] == "render_scattering":
+        render_scattering(*sys.argv[2:])
+    elif len(sys.argv) == 6 and sys.argv[1] == "scattering_gate":
+        scattering_gate(*sys.argv[2:])
     else:
         sys.exit(__doc__)
