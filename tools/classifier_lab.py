@@ -35,16 +35,21 @@ is run at library defaults or one fixed regularisation).
       the structured class's) exceeds t, the classifier's nearest family of the run instead; t
       chosen on 4 folds by photo as the most structured patches labelled among those keeping
       >= 95 % of the stochastic patches served, a switched stochastic patch counted as not served)
-  classifier_lab.py scattering FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv   (rotation-invariant
+  classifier_lab.py scattering FEATURES.tsv CORPUS_DIR DEV_DIR OUT.tsv [128]   (rotation-invariant
       scattering of each quadrant's luminance, Bruna & Mallat 2013, Sifre & Mallat 2013: Morlet
       wavelets of 5 scales and 8 orientations, first and second order averaged over space;
-      `scattering_features`; about 0.4 s a quadrant, 25 minutes for the four batches on 2 cores)
-  classifier_lab.py noise_renders DEV_DIR PROCTEX OUT_DIR [SEED]   (the noise model's render of
-      every development patch, `proctex synth --crop QUADRANT --model noise --seed SEED`)
-  classifier_lab.py render_scattering OUT_DIR RENDERS.tsv   (those renders' scattering)
+      `scattering_features`; about 0.4 s a quadrant, 25 minutes for the four batches on 2 cores;
+      with 128: the quadrant reduced to 128 pixels, 4 scales, 5 minutes)
+  classifier_lab.py renders DEV_DIR PROCTEX OUT_DIR MODEL [SEED]   (a model's render of every
+      development patch, `proctex synth --crop QUADRANT --model MODEL --seed SEED`; MODEL
+      `nearest=RUN.jsonl`: the run's classifier's nearest family of each patch)
+  classifier_lab.py render_scattering OUT_DIR RENDERS.tsv [128]   (those renders' scattering)
   classifier_lab.py scattering_gate RUN.jsonl FEATURES.tsv SCATTERING.tsv RENDERS.tsv[,RENDERS2.tsv…]
       (the scattering's structured-vs-noise log odds, of the patch and of the patch minus its noise
       render's, as `gate`'s margin; trained on the corpus alone; t chosen on 4 folds as `gate`)
+  classifier_lab.py render_gate RUN.jsonl FEATURES.tsv SCATTERING.tsv NOISE.tsv[,NOISE2.tsv…] FAMILY.tsv
+      (the photo's scattering distance to its noise render minus that to its nearest family's
+      render as `gate`'s margin; the same size's features throughout)
 
 Needs numpy, scikit-learn and (for `lbp`, `phases`, `unit_colours`, `scattering`) scikit-image,
 SciPy and Pillow: `pip install scikit-learn scikit-image scipy pillow`.
@@ -244,10 +249,10 @@ def unit_colours(path, corpus_dir, dev_dir, out):
     write_features(path, corpus_dir, dev_dir, out, features, colour=True)
 
 
-SCATTERING_J, SCATTERING_L = 5, 8  # scales 1-16 px (a 256-pixel quadrant), orientations
+SCATTERING_L = 8  # orientations
 
 
-def morlet_bank(n):
+def morlet_bank(n, scales):
     """Morlet wavelets in the frequency domain on an n x n grid (Bruna & Mallat 2013): scale j
     has envelope width 0.8 * 2^j px and centre frequency 3*pi/4 / 2^j, orientation l is
     pi * l / L; the envelope is narrower across the orientation by L/4 (as kymatio's slant) and
@@ -256,7 +261,7 @@ def morlet_bank(n):
     w = 2 * np.pi * fft.fftfreq(n)
     wy, wx = np.meshgrid(w, w, indexing="ij")
     bank = {}
-    for j in range(SCATTERING_J):
+    for j in range(scales):
         sigma, xi = 0.8 * 2 ** j, 3 * np.pi / 4 / 2 ** j
         for l in range(SCATTERING_L):
             th = np.pi * l / SCATTERING_L
@@ -271,21 +276,26 @@ def morlet_bank(n):
     return bank
 
 
-def scattering_features(g, banks={}):
+def scattering_features(g, half=False, banks={}):
     """Rotation-invariant scattering of a luminance image (its square top-left part, normalised
-    to zero mean and unit variance): log of the first order's spatial means averaged over
+    to zero mean and unit variance; with `half`, first reduced 2x by 2x boxes to at most 128 pixels
+    a side and 4 scales instead of 5): log of the first order's spatial means averaged over
     orientations per scale, the first two orientation harmonics' magnitudes relative to it, and
     the second order's log ratio to the first, ||x * psi_j1,l1| * psi_j2,l2| averaged over
     space and over l1 at each orientation difference l2 - l1 (Sifre & Mallat 2013): 5 + 10 + 80
-    numbers."""
+    numbers (with `half` 4 + 8 + 48)."""
     from scipy import fft
+    g = np.asarray(g, dtype=np.float64)
+    if half and min(g.shape) > 128:
+        h, w = g.shape
+        g = g[:h // 2 * 2, :w // 2 * 2].reshape(h // 2, 2, w // 2, 2).mean((1, 3))
     n = min(g.shape)
-    g = np.asarray(g, dtype=np.float64)[:n, :n]
+    g = g[:n, :n]
     g = (g - g.mean()) / (g.std() + 1e-6)
-    if n not in banks:
-        banks[n] = morlet_bank(n)
-    bank = banks[n]
-    J, L = SCATTERING_J, SCATTERING_L
+    J, L = (4 if half else 5), SCATTERING_L
+    if (n, J) not in banks:
+        banks[(n, J)] = morlet_bank(n, J)
+    bank = banks[(n, J)]
     x = fft.fft2(g.astype(np.complex64))
     s1, s2 = np.zeros((J, L)), np.zeros((J, J, L))
     for j1 in range(J):
@@ -308,17 +318,25 @@ def scattering_features(g, banks={}):
     return f
 
 
-def scattering(path, corpus_dir, dev_dir, out):
-    write_features(path, corpus_dir, dev_dir, out, scattering_features)
+def scattering(path, corpus_dir, dev_dir, out, size="256"):
+    write_features(path, corpus_dir, dev_dir, out,
+                   lambda g: scattering_features(g, half=size == "128"))
 
 
-def noise_renders(dev_dir, proctex, out_dir, seed="1"):
-    """The noise model's render of every development patch (`proctex synth --crop QUADRANT
-    --model noise --seed SEED`, 1 unless given; two at a time) as OUT_DIR/PHOTO.Q.png, Q in the lab's order."""
+def renders(dev_dir, proctex, out_dir, model="noise", seed="1"):
+    """A model's render of every development patch, `proctex synth --crop QUADRANT --model M
+    --seed SEED` (two at a time), as OUT_DIR/PHOTO.Q.png, Q in the lab's order: M is MODEL, or
+    with MODEL `nearest=RUN.jsonl` the run's classifier's nearest family for that patch (the
+    family the render-null rule would put first)."""
     import os
     from concurrent.futures import ThreadPoolExecutor
     import subprocess
     from PIL import Image
+    nearest = {}
+    if model.startswith("nearest="):
+        for photo, _, c in run_rows(model[len("nearest="):]):
+            nearest[(photo, QUADRANTS.index(c["patch"]))] = next(
+                k for k in c["classifier"] if k != "noise")
     jobs = []
     for line in open(f"{dev_dir}/manifest.tsv"):
         name = line.split("\t")[0]
@@ -327,15 +345,16 @@ def noise_renders(dev_dir, proctex, out_dir, seed="1"):
         w, h = Image.open(f"{dev_dir}/{name}").size
         for q, (qx, qy) in enumerate([(0, 0), (1, 0), (0, 1), (1, 1)]):
             jobs.append([proctex, "synth", f"{dev_dir}/{name}", "--crop",
-                         f"{qx * (w // 2)},{qy * (h // 2)},{w // 2},{h // 2}", "--model", "noise",
-                         "--seed", seed, "-o", os.path.join(out_dir, f"{name}.{q}.png")])
+                         f"{qx * (w // 2)},{qy * (h // 2)},{w // 2},{h // 2}",
+                         "--model", nearest.get((name, q), model), "--seed", seed,
+                         "-o", os.path.join(out_dir, f"{name}.{q}.png")])
     with ThreadPoolExecutor(2) as pool:
         for r in pool.map(lambda j: subprocess.run(j, capture_output=True), jobs):
             r.check_returncode()
 
 
-def render_scattering(render_dir, out):
-    """`scattering_features` of the renders `noise_renders` wrote (reduced to at most 256 pixels
+def render_scattering(render_dir, out, size="256"):
+    """`scattering_features` of the renders `renders` wrote (reduced to at most 256 pixels
     a side, as `quadrants` reduces a patch), one row per development patch."""
     import os
     from PIL import Image
@@ -346,7 +365,7 @@ def render_scattering(render_dir, out):
                 s = 256 / max(im.size)
                 im = im.resize((round(im.size[0] * s), round(im.size[1] * s)), Image.BOX)
             g = np.asarray(im, dtype=np.float64) @ [0.2126, 0.7152, 0.0722]
-            o.write("\t".join(["dev", f[:-6], f[-5]] + ["%.6g" % v for v in scattering_features(g)])
+            o.write("\t".join(["dev", f[:-6], f[-5]] + ["%.6g" % v for v in scattering_features(g, size == "128")])
                     + "\n")
 
 
@@ -472,6 +491,51 @@ def scattering_gate(run, features, scattering_tsv, renders_tsv):
                       f"held out labelled {held[0]}, served {held[1]} (t "
                       + ", ".join("%.2f" % t for t in chosen) + ")")
 
+
+def render_gate(run, features, scattering_tsv, noise_tsv, family_tsv):
+    """Which render the photo is nearer to in scattering space, the noise model's or the
+    classifier's nearest family's (`renders`; analysis by synthesis, as Bourque & Dudek and the
+    two-tone paper choose, with the scattering's distance instead of the texture distance), as
+    `gate`'s margin: |photo - noise render| - |photo - family render|, the features standardised
+    by the corpus's means and deviations (`standardised`) or projected on its eight-class
+    discriminant's axes (`discriminant`); t chosen on 4 folds (`gate_cv`). NOISE_TSV may be
+    several files, comma-separated, one per seed: each is scored on its own."""
+    from sklearn.discriminant_analysis import LinearDiscriminantAnalysis
+    from sklearn.metrics import roc_auc_score
+    rows = run_rows(run)
+    with_scattering = load(features, scattering_tsv)
+    width = len(load(features)[0][0][1])
+    x = np.array([r[1][width:] for r in with_scattering[0]])
+    y = np.array([r[0] for r in with_scattering[0]])
+    keys = [(t[1], QUADRANTS[int(t[2])]) for t in (line.split("\t", 3) for line in open(features))
+            if t[0] == "dev"]
+    photo = dict(zip(keys, [r[1][width:] for r in with_scattering[1]]))
+
+    def read(path):
+        out = {}
+        for line in open(path):
+            t = line.rstrip("\n").split("\t")
+            out[(t[1], QUADRANTS[int(t[2])])] = np.array([float(v) for v in t[3:]])
+        return out
+    family = read(family_tsv)
+    mean, sd = x.mean(0), x.std(0) + 1e-9
+    lda = LinearDiscriminantAnalysis(solver="eigen", shrinkage="auto").fit((x - mean) / sd, y)
+    spaces = {"standardised": lambda v: (v - mean) / sd,
+              "discriminant": lambda v: lda.transform(((v - mean) / sd)[None])[0]}
+    structured = [labels != ["noise"] for _, labels, _ in rows]
+    print("the run: labelled %d, served %d" % gate_tally(rows, {k: 0 for k in keys}, float("inf")))
+    for noise_tsv_one in noise_tsv.split(","):
+        noise = read(noise_tsv_one)
+        for name, space in spaces.items():
+            margin = {k: float(np.linalg.norm(space(photo[k]) - space(noise[k]))
+                               - np.linalg.norm(space(photo[k]) - space(family[k]))) for k in keys}
+            at = sorted(set(margin.values()))
+            grid = [(a + b) / 2 for a, b in zip(at, at[1:])] + [float("inf")]
+            held, chosen = gate_cv(rows, margin, grid)
+            auc = roc_auc_score(structured, [margin[(p, c["patch"])] for p, _, c in rows])
+            print(f"{noise_tsv_one}, {name}: AUC {auc:.3f}, held out labelled {held[0]}, served "
+                  f"{held[1]} (t " + ", ".join("%.2f" % t for t in chosen) + ")")
+
 if __name__ == "__main__":
     if len(sys.argv) >= 3 and sys.argv[1] == "classifiers":
         classifiers(*sys.argv[2:5])
@@ -483,12 +547,14 @@ if __name__ == "__main__":
         phases(*sys.argv[2:])
     elif len(sys.argv) == 6 and sys.argv[1] == "unit_colours":
         unit_colours(*sys.argv[2:])
-    elif len(sys.argv) == 6 and sys.argv[1] == "scattering":
+    elif len(sys.argv) in (6, 7) and sys.argv[1] == "scattering":
         scattering(*sys.argv[2:])
-    elif len(sys.argv) in (5, 6) and sys.argv[1] == "noise_renders":
-        noise_renders(*sys.argv[2:])
-    elif len(sys.argv) == 4 and sys.argv[1] == "render_scattering":
+    elif len(sys.argv) in (5, 6, 7) and sys.argv[1] == "renders":
+        renders(*sys.argv[2:])
+    elif len(sys.argv) in (4, 5) and sys.argv[1] == "render_scattering":
         render_scattering(*sys.argv[2:])
+    elif len(sys.argv) == 7 and sys.argv[1] == "render_gate":
+        render_gate(*sys.argv[2:])
     elif len(sys.argv) == 6 and sys.argv[1] == "scattering_gate":
         scattering_gate(*sys.argv[2:])
     else:

@@ -256,6 +256,25 @@ fn fidelity_against_another_model_prints_the_paired_difference() {
     assert_ne!(u2["result"]["per_patch"], u["result"]["per_patch"]);
     let o = proctex(&["fidelity", &photo, "--unseen-seeds", "0"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // Seeds from another first one: the same patches; seeds 2 and 3 are not 1 and 2.
+    let later = |first: &str| -> serde_json::Value {
+        let args = [
+            "fidelity",
+            &photo,
+            "--seeds",
+            "2",
+            "--first-seed",
+            first,
+            "--json",
+        ];
+        let o = proctex(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_str(stdout(&o).trim()).unwrap()
+    };
+    assert_eq!(later("1")["result"], v["result"]);
+    let l = later("2");
+    assert_eq!(l["result"]["halves"], v["result"]["halves"]);
+    assert_ne!(l["result"]["per_patch"], v["result"]["per_patch"]);
     // The help names the offset (the library's constant, filled in).
     let help = stdout(&proctex(&["fidelity", "--help"]));
     assert!(help.contains("--unseen-seed: each analysed model is rendered at its seed + "));
@@ -349,6 +368,8 @@ fn bad_usage_exits_2() {
         vec!["fidelity", "--set", "d", "--fold", "x"],
         vec!["fidelity", "x.png", "--fold", "0/4"],
         vec!["fidelity", "--set", "d", "x.png"],
+        vec!["fidelity", "x.png", "--first-seed", "4294967295"],
+        vec!["fidelity", "--set", "d", "--first-seed", "x"],
         vec!["pyramid", "x.png"],
         vec!["pyramid", "x.png", "-o", "y.jpg"],
         vec!["pyramid", "x.png", "-o", "y.png", "--iterations", "nan"],

@@ -21,11 +21,11 @@ use super::{analysis_flag, parse_model_choice, refinement_of};
 use proctex::limits;
 
 const FIDELITY_HELP: &str = "\
-proctex fidelity PHOTO... [--seeds N] [--model M] [--against M2] [--unseen-seed | --unseen-seeds K] [--json] [analyze OPTIONS]
-proctex fidelity --set DIR [--seeds N] [--fold K/F] [--unseen-seed | --unseen-seeds K] [--json] [analyze OPTIONS]
+proctex fidelity PHOTO... [--seeds N] [--first-seed S] [--model M] [--against M2] [--unseen-seed | --unseen-seeds K] [--json] [analyze OPTIONS]
+proctex fidelity --set DIR [--seeds N] [--first-seed S] [--fold K/F] [--unseen-seed | --unseen-seeds K] [--json] [analyze OPTIONS]
 
 For each photo: pairs its top-left with its bottom-left quadrant and its top-right with its
-bottom-right (A, B), synthesises from each patch (seeds 1..N, default 3) and compares with the
+bottom-right (A, B), synthesises from each patch (seeds S..S+N−1: N 3 and S 1 unless given) and compares with the
 other patch of its pair. Prints d(A,B), the mean d(synthesis, other patch), and their ratio
 (near 1: as close as another patch of the same material), and the floor: the same ratio for
 the patch's own spectrum with random phases, histogram-matched (the best any Gaussian model
@@ -40,9 +40,9 @@ two where the quadrants repeat (a tile laid 2×2, each patch twice; the text out
 --set DIR: the development-set yardstick over the photos that DIR/manifest.tsv lists (columns
 file, category, material, and families: the families a good match may use, `noise` for the
 noise model). For every source patch of every photo: the model the automatic choice picks
-(seed 1), whether it is a labelled family (y/n), the first three of its ranking and the
+(the first seed), whether it is a labelled family (y/n), the first three of its ranking and the
 analysis time; per photo the ratios (spectrum, colour, structure, overall: their mean) of the
-automatic choice and of the noise model alone, with seeds 1..N (default 1). Then the summary:
+automatic choice and of the noise model alone, with seeds S..S+N−1 (default: 1 alone). Then the summary:
 labelled-family rates of the structured patches (first and top three), the stochastic patches
 served well (the noise model kept, or a family no farther from the photo), mean overall ratios
 and their difference with standard errors over photos, times, the confusion matrix, and specks:
@@ -56,6 +56,15 @@ three, which are partly fitted to the photo's realisation); default: its own see
 --unseen-seeds K: K such realisations (seed + UNSEEN, + UNSEEN + 1, …), their distances
 averaged (specks: the first); a paired comparison of two builds then scatters less.";
 
+/// The seeds `first..first + n`, refused where they would pass `u32::MAX` (the seeds of a
+/// render's tone curve and unseen realisations lie further on).
+fn seed_range(first: u32, n: u32) -> Result<Vec<u32>> {
+    first
+        .checked_add(n.saturating_add(UNSEEN_SEED_OFFSET))
+        .map(|_| (first..first + n).collect())
+        .ok_or_else(|| usage("fidelity: --first-seed too large"))
+}
+
 pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     let mut o = Options::default();
     let mut model = Choice::Model(ModelChoice::Noise);
@@ -67,7 +76,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     };
     let mut files = Vec::new();
     let mut against = None;
-    let (mut nseeds, mut json) = (None, false);
+    let (mut nseeds, mut first_seed, mut json) = (None, 1u32, false);
     let mut set = None;
     let mut fold = None;
     let mut raster = RasterOptions::new(0, 0);
@@ -80,6 +89,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
                 return Ok(());
             }
             "--seeds" => nseeds = Some(a.parsed::<u32>(&arg)?),
+            "--first-seed" => first_seed = a.parsed::<u32>(&arg)?,
             "--set" => set = Some(a.value(&arg)?),
             "--fold" => fold = Some(fold_of_arg(&a.value(&arg)?)?),
             "--model" => model = choice(&mut a, &arg)?,
@@ -113,7 +123,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
                 "fidelity --set: no photos, no --model and no --against (the set says them)",
             ));
         }
-        let seeds: Vec<u32> = (1..=nseeds.unwrap_or(1)).collect();
+        let seeds = seed_range(first_seed, nseeds.unwrap_or(1))?;
         return dev_set(Path::new(&dir), &o, refinement, render, &seeds, fold, json);
     }
     if fold.is_some() {
@@ -123,7 +133,7 @@ pub(super) fn cmd_fidelity(mut a: Args) -> Result<()> {
     if files.is_empty() || nseeds == 0 {
         return Err(usage("fidelity: needs at least one photo and --seeds ≥ 1"));
     }
-    let seeds: Vec<u32> = (1..=nseeds).collect();
+    let seeds = seed_range(first_seed, nseeds)?;
     if !json {
         println!(
             "{:<32} {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}   {:>8} {:>8} {:>6} {:>7}",
