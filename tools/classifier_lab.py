@@ -129,19 +129,28 @@ def classifiers(path, extra=None, alone=None):
         score(model, train, dev, name)
 
 
+QUADRANT_CORNERS = [(0, 0), (1, 0), (0, 1), (1, 1)]  # TL, TR, BL, BR: the lab's order
+
+
+def reduced(im, colour=False):
+    """A PIL image's luminance (RGB in 0–1 with `colour`), reduced to at most 256 pixels a side
+    as the ranking reduces a patch (retrieve::RANK_SIZE)."""
+    from PIL import Image
+    if max(im.size) > 256:
+        s = 256 / max(im.size)
+        im = im.resize((round(im.size[0] * s), round(im.size[1] * s)), Image.BOX)
+    rgb = np.asarray(im.convert("RGB"), dtype=np.float64)
+    return rgb / 255 if colour else rgb @ [0.2126, 0.7152, 0.0722]
+
+
 def quadrants(file, colour=False):
-    """A texture's four quadrants' luminance (TL, TR, BL, BR; RGB in 0–1 with `colour`), each
-    reduced to at most 256 pixels a side as the ranking reduces a patch (retrieve::RANK_SIZE)."""
+    """A texture's four quadrants (`QUADRANT_CORNERS`), each `reduced`."""
     from PIL import Image
     im = Image.open(file).convert("RGB")
     w, h = im.size
-    for qx, qy in [(0, 0), (1, 0), (0, 1), (1, 1)]:
-        q = im.crop((qx * (w // 2), qy * (h // 2), (qx + 1) * (w // 2), (qy + 1) * (h // 2)))
-        if max(q.size) > 256:
-            s = 256 / max(q.size)
-            q = q.resize((round(q.size[0] * s), round(q.size[1] * s)), Image.BOX)
-        rgb = np.asarray(q, dtype=np.float64)
-        yield rgb / 255 if colour else rgb @ [0.2126, 0.7152, 0.0722]
+    for qx, qy in QUADRANT_CORNERS:
+        yield reduced(im.crop((qx * (w // 2), qy * (h // 2), (qx + 1) * (w // 2),
+                               (qy + 1) * (h // 2))), colour)
 
 
 def write_features(path, corpus_dir, dev_dir, out, features, colour=False):
@@ -272,7 +281,8 @@ def morlet_bank(n, scales):
                 v = -ax * np.sin(th) + ay * np.cos(th)
                 return np.exp(-sigma ** 2 * (u ** 2 + (v * SCATTERING_L / 4) ** 2) / 2)
             beta = envelope(np.array(-cx), np.array(-cy))
-            bank[(j, l)] = (envelope(wx - cx, wy - cy) - beta * envelope(wx, wy)).astype(np.complex64)
+            psi = envelope(wx - cx, wy - cy) - beta * envelope(wx, wy)
+            bank[(j, l)] = psi.astype(np.complex64)
     return bank
 
 
@@ -343,7 +353,7 @@ def renders(dev_dir, proctex, out_dir, model="noise", seed="1"):
         if line.startswith("#") or not name.endswith((".png", ".jpg")):
             continue
         w, h = Image.open(f"{dev_dir}/{name}").size
-        for q, (qx, qy) in enumerate([(0, 0), (1, 0), (0, 1), (1, 1)]):
+        for q, (qx, qy) in enumerate(QUADRANT_CORNERS):
             jobs.append([proctex, "synth", f"{dev_dir}/{name}", "--crop",
                          f"{qx * (w // 2)},{qy * (h // 2)},{w // 2},{h // 2}",
                          "--model", nearest.get((name, q), model), "--seed", seed,
@@ -354,19 +364,15 @@ def renders(dev_dir, proctex, out_dir, model="noise", seed="1"):
 
 
 def render_scattering(render_dir, out, size="256"):
-    """`scattering_features` of the renders `renders` wrote (reduced to at most 256 pixels
-    a side, as `quadrants` reduces a patch), one row per development patch."""
+    """`scattering_features` of the renders `renders` wrote (each `reduced` as a patch is), one
+    row per development patch."""
     import os
     from PIL import Image
     with open(out, "w") as o:
         for f in sorted(os.listdir(render_dir)):
-            im = Image.open(os.path.join(render_dir, f)).convert("RGB")
-            if max(im.size) > 256:
-                s = 256 / max(im.size)
-                im = im.resize((round(im.size[0] * s), round(im.size[1] * s)), Image.BOX)
-            g = np.asarray(im, dtype=np.float64) @ [0.2126, 0.7152, 0.0722]
-            o.write("\t".join(["dev", f[:-6], f[-5]] + ["%.6g" % v for v in scattering_features(g, size == "128")])
-                    + "\n")
+            g = reduced(Image.open(os.path.join(render_dir, f)))
+            row = ["%.6g" % v for v in scattering_features(g, size == "128")]
+            o.write("\t".join(["dev", f[:-6], f[-5]] + row) + "\n")
 
 
 QUADRANTS = ["top-left", "top-right", "bottom-left", "bottom-right"]  # the lab's order
@@ -421,6 +427,21 @@ def gate_cv(rows, margin, grid):
     return held, chosen
 
 
+def patch_rows(path):
+    """A `render_scattering` file as {(photo, quadrant name): its numbers}."""
+    out = {}
+    for line in open(path):
+        t = line.rstrip("\n").split("\t")
+        out[(t[1], QUADRANTS[int(t[2])])] = np.array([float(v) for v in t[3:]])
+    return out
+
+
+def midpoints(margin):
+    """The thresholds worth trying for `margin`: between each two of its values, and infinity."""
+    at = sorted(set(margin.values()))
+    return [(a + b) / 2 for a, b in zip(at, at[1:])] + [float("inf")]
+
+
 def gate(run, dump):
     margin, seen = {}, {}
     for line in open(dump):
@@ -457,13 +478,7 @@ def scattering_gate(run, features, scattering_tsv, renders_tsv):
     dev = np.array([x[width:] for _, x in with_scattering[1]])
     keys = [(t[1], QUADRANTS[int(t[2])]) for t in (line.split("\t", 3) for line in open(features))
             if t[0] == "dev"]
-    renders = []
-    for path in renders_tsv.split(","):
-        render = {}
-        for line in open(path):
-            t = line.rstrip("\n").split("\t")
-            render[(t[1], QUADRANTS[int(t[2])])] = [float(v) for v in t[3:]]
-        renders.append(np.array([render[k] for k in keys]))
+    renders = [np.array([r[k] for k in keys]) for r in map(patch_rows, renders_tsv.split(","))]
     x, y = np.array([r[1] for r in train]), np.array([r[0] for r in train])
     structured = [labels != ["noise"] for _, labels, _ in rows]
     print("the run: labelled %d, served %d" % gate_tally(rows, {k: 0 for k in keys}, float("inf")))
@@ -481,13 +496,13 @@ def scattering_gate(run, features, scattering_tsv, renders_tsv):
             def odds(a):
                 p = m.predict_proba(a)[:, noise]
                 return np.log(1 - p + 1e-6) - np.log(p + 1e-6)
-            for null, margin in (("photo", odds(dev)), ("photo - render", odds(dev) - np.mean([odds(r) for r in renders], 0))):
+            beyond = odds(dev) - np.mean([odds(r) for r in renders], 0)
+            for null, margin in (("photo", odds(dev)), ("photo - render", beyond)):
                 margin = dict(zip(keys, margin.tolist()))
-                at = sorted(set(margin.values()))
-                grid = [(a + b) / 2 for a, b in zip(at, at[1:])] + [float("inf")]
-                held, chosen = gate_cv(rows, margin, grid)
+                held, chosen = gate_cv(rows, margin, midpoints(margin))
                 auc = roc_auc_score(structured, [margin[(p, c["patch"])] for p, _, c in rows])
-                print(f"{name}, {'two classes' if two else 'eight classes'}, {null}: AUC {auc:.3f}, "
+                classes = "two classes" if two else "eight classes"
+                print(f"{name}, {classes}, {null}: AUC {auc:.3f}, "
                       f"held out labelled {held[0]}, served {held[1]} (t "
                       + ", ".join("%.2f" % t for t in chosen) + ")")
 
@@ -510,14 +525,7 @@ def render_gate(run, features, scattering_tsv, noise_tsv, family_tsv):
     keys = [(t[1], QUADRANTS[int(t[2])]) for t in (line.split("\t", 3) for line in open(features))
             if t[0] == "dev"]
     photo = dict(zip(keys, [r[1][width:] for r in with_scattering[1]]))
-
-    def read(path):
-        out = {}
-        for line in open(path):
-            t = line.rstrip("\n").split("\t")
-            out[(t[1], QUADRANTS[int(t[2])])] = np.array([float(v) for v in t[3:]])
-        return out
-    family = read(family_tsv)
+    family = patch_rows(family_tsv)
     mean, sd = x.mean(0), x.std(0) + 1e-9
     lda = LinearDiscriminantAnalysis(solver="eigen", shrinkage="auto").fit((x - mean) / sd, y)
     spaces = {"standardised": lambda v: (v - mean) / sd,
@@ -525,16 +533,15 @@ def render_gate(run, features, scattering_tsv, noise_tsv, family_tsv):
     structured = [labels != ["noise"] for _, labels, _ in rows]
     print("the run: labelled %d, served %d" % gate_tally(rows, {k: 0 for k in keys}, float("inf")))
     for noise_tsv_one in noise_tsv.split(","):
-        noise = read(noise_tsv_one)
+        noise = patch_rows(noise_tsv_one)
         for name, space in spaces.items():
             margin = {k: float(np.linalg.norm(space(photo[k]) - space(noise[k]))
                                - np.linalg.norm(space(photo[k]) - space(family[k]))) for k in keys}
-            at = sorted(set(margin.values()))
-            grid = [(a + b) / 2 for a, b in zip(at, at[1:])] + [float("inf")]
-            held, chosen = gate_cv(rows, margin, grid)
+            held, chosen = gate_cv(rows, margin, midpoints(margin))
             auc = roc_auc_score(structured, [margin[(p, c["patch"])] for p, _, c in rows])
             print(f"{noise_tsv_one}, {name}: AUC {auc:.3f}, held out labelled {held[0]}, served "
                   f"{held[1]} (t " + ", ".join("%.2f" % t for t in chosen) + ")")
+
 
 if __name__ == "__main__":
     if len(sys.argv) >= 3 and sys.argv[1] == "classifiers":
