@@ -154,6 +154,12 @@ pub struct PatchChoice {
     /// choosing [`crate::retrieve::RENDER_NULL_MARGIN`] again needs
     /// (`tools/devset_null_gate_cv.py`).
     pub noise_render_margin: f64,
+    /// Where the ranking's other rules put the noise model first: how much nearer the patch is
+    /// to its nearest family's final render than to the noise model's in the scattering space
+    /// (the ranking's [`crate::retrieve::Suggestion::nearer_render_margin`]); negative infinity
+    /// elsewhere (JSON `null`). What choosing [`crate::retrieve::NEARER_RENDER_MARGIN`] again
+    /// needs (`tools/devset_nearer_render_cv.py`).
+    pub nearer_render_margin: f64,
 }
 
 /// [`crate::noise_tone::numbers`] of the noise model in a ranking (0 if it has none).
@@ -253,6 +259,11 @@ impl PhotoResult {
                     .map_or(f64::NEG_INFINITY, |c| {
                         crate::retrieve::class_margin(&render_classes(c), nearest, None)
                     });
+                let nearer_render_margin = run
+                    .ranking
+                    .iter()
+                    .find_map(|c| c.nearer_render_margin)
+                    .unwrap_or(f64::NEG_INFINITY);
                 choices[run.patch] = Some(PatchChoice {
                     patch: PATCHES[run.patch],
                     chosen: names.first().cloned().unwrap_or_else(|| "noise".into()),
@@ -290,6 +301,7 @@ impl PhotoResult {
                         .collect(),
                     classifier_distances: classes.iter().map(|c| c.1).collect(),
                     noise_render_margin,
+                    nearer_render_margin,
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -702,6 +714,7 @@ mod tests {
                     classifier: Vec::new(),
                     classifier_distances: vec![1.0],
                     noise_render_margin: 0.0,
+                    nearer_render_margin: 0.0,
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

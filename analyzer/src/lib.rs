@@ -54,6 +54,8 @@ pub mod distance;
 pub mod family_classifier;
 mod family_classifier_table;
 pub mod gabor;
+pub mod scattering;
+mod scattering_table;
 pub mod straight_lines;
 pub mod two_tone;
 

@@ -12,3 +12,17 @@ pub fn map_in_order<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync + 
     #[cfg(target_arch = "wasm32")]
     items.iter().map(f).collect()
 }
+
+/// `a()` and `b()`, in parallel on native (rayon's work stealing fills one's idle threads with
+/// the other's work), one after the other in the browser's worker.
+pub fn join<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        rayon::join(a, b)
+    }
+    #[cfg(target_arch = "wasm32")]
+    (a(), b())
+}

@@ -17,8 +17,9 @@
 mod rank;
 
 pub use rank::{
-    CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NOISE_MODEL_MARGIN, RENDER_NULL_MARGIN,
-    RENDER_ORDERED, TEXTURE_WEIGHT, self_distance, texture_distance,
+    CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NEARER_RENDER_MARGIN, NOISE_MODEL_MARGIN,
+    RENDER_NULL_MARGIN, RENDER_ORDERED, TEXTURE_WEIGHT, nearer_render_margin, self_distance,
+    texture_distance,
 };
 
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
@@ -120,6 +121,11 @@ pub struct Suggestion {
     /// ([`classify`]; [`RENDER_NULL_MARGIN`]); `None` for a family not fitted yet or not
     /// render-ordered ([`Fit`]).
     pub render_classes: Option<Vec<(Class, f64)>>,
+    /// For the noise model where the ranking's other rules put it first: how much nearer the
+    /// photo is to the classifier's nearest family's final render than to the noise model's in
+    /// the scattering space ([`nearer_render_margin`], [`NEARER_RENDER_MARGIN`]); `None`
+    /// elsewhere.
+    pub nearer_render_margin: Option<f64>,
 }
 
 /// How much refinement [`suggest_with`] does.
@@ -208,7 +214,9 @@ pub fn rank_with(
 /// `photo` unreduced ([`Suggester::fit_noise_unreduced`]): the analysis that choosing the noise
 /// model needs, bit for bit, at no further cost. A 256² crop whose best model is the noise
 /// model was analysed twice: the gravel sample's top-left crop analysed warm, old and new
-/// alternated, median of six each, 1.02 → 0.74 s and 1.01 → 0.74 s (two threads).
+/// alternated, median of six each, 1.02 → 0.74 s and 1.01 → 0.74 s (two threads). Likewise
+/// the first round of the nearest family's final fit that [`NEARER_RENDER_MARGIN`] made on
+/// `photo` unreduced, from which choosing that family goes on.
 ///
 /// `also`: a family refined as well when the refinement leaves it out (the one asked for by
 /// name: `--model brick`), so that it is refined whatever the classifier says.
@@ -220,7 +228,7 @@ fn rank_keeping_noise(
     fitted: usize,
     also: Option<PatternKind>,
     progress: &(dyn Fn(usize, usize) -> bool + Sync),
-) -> (Vec<Suggestion>, Option<Analysis>) {
+) -> (Vec<Suggestion>, Unreduced) {
     let mut s = Suggester::new(db, photo, opts, refinement);
     let total = s.evaluations();
     let done = std::sync::atomic::AtomicUsize::new(0);
@@ -268,7 +276,17 @@ fn rank_keeping_noise(
         s.set_refined(i, r);
     }
     let noise = s.fit_noise_unreduced(db);
-    (s.ranked(db, fitted), noise)
+    let ranked = s.ranked(db, fitted);
+    let family = s.take_nearest_first_round();
+    (ranked, Unreduced { noise, family })
+}
+
+/// What [`rank_keeping_noise`]'s ranking computed on the photo unreduced that choosing a model
+/// would compute again, bit for bit: the noise model's analysis, and the first round of the
+/// nearest family's final fit.
+struct Unreduced {
+    noise: Option<Analysis>,
+    family: Option<rank::NearestFirstRound>,
 }
 
 /// The automatic model choice in steps, for callers that must stay responsive (the browser's
@@ -312,6 +330,10 @@ pub struct Suggester {
     /// candidate's render with.
     classes: Vec<(Class, f64)>,
     nearest_family: Option<PatternKind>,
+    /// The nearest family's fit made for [`NEARER_RENDER_MARGIN`], kept for a later ranking of
+    /// the same refinement and for choosing that family
+    /// ([`Suggester::take_nearest_first_round`]).
+    nearest_first_round: std::sync::Arc<std::sync::Mutex<Option<rank::NearestFirstRound>>>,
 }
 
 /// A candidate fitted on the reduced photo: its parameters, the texture distance of their
@@ -389,6 +411,7 @@ impl Suggester {
             noise_fit: None,
             classes,
             nearest_family,
+            nearest_first_round: Default::default(),
         }
     }
 
@@ -594,7 +617,7 @@ pub fn analyze_with_model_progress(
         ModelChoice::Kind(k) => Some(k),
         _ => None,
     };
-    let (suggestions, noise) = rank_keeping_noise(
+    let (suggestions, unreduced) = rank_keeping_noise(
         db,
         photo,
         opts,
@@ -609,8 +632,13 @@ pub fn analyze_with_model_progress(
         ModelChoice::Noise => s.pattern.is_none(),
     });
     let analysis = match pick.and_then(|s| s.pattern.as_ref()) {
-        Some((p, swapped)) => fit_structured(db, photo, p, opts, *swapped),
-        None => noise.unwrap_or_else(|| analyze_prepared(photo, opts)),
+        Some((p, swapped)) => match unreduced.family {
+            Some(kept) if kept.pattern == *p && kept.swapped == *swapped => kept.round.complete(db),
+            _ => fit_structured(db, photo, p, opts, *swapped),
+        },
+        None => unreduced
+            .noise
+            .unwrap_or_else(|| analyze_prepared(photo, opts)),
     };
     (analysis, suggestions)
 }

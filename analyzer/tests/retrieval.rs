@@ -235,6 +235,75 @@ fn a_family_that_the_first_familys_render_does_not_explain_ranks_first() {
     assert!(beyond > RENDER_NULL_MARGIN, "{beyond}");
 }
 
+/// A quadrant of a pebble bed, which the noise model wins by texture distance and whose margin
+/// its render explains, is nearer in the scattering space to the final render of the
+/// classifier's nearest family (cells, the photo's label; the first round of its final fit)
+/// than to the noise model's render by
+/// more than the threshold (`retrieve::NEARER_RENDER_MARGIN`): cells come first, the noise model
+/// right after the fitted families, and the recorded margin is the one measured here from the
+/// same fits. On gravel the noise model's render is the nearer one, and it stays first.
+#[test]
+fn a_family_whose_final_render_is_nearer_than_the_noise_models_ranks_first() {
+    use proctex::noise::Tile;
+    use proctex::retrieve::{
+        ModelChoice, NEARER_RENDER_MARGIN, RENDER_ORDERED, analyze_with_model, classify,
+        nearer_render_margin,
+    };
+    use proctex::structure::{FirstRound, fit_structured};
+    let db = Db::shipped();
+    let opts = Options::default();
+    let pebbles = common::dev_quadrant("openarena_pebbles_256.png");
+    let nearest = classify(&pebbles)
+        .iter()
+        .find_map(|(c, _)| *c)
+        .expect("a family");
+    let ranked = rank_with(db, &pebbles, &opts, Refinement::default(), 1, &|_, _| true);
+    let names: Vec<&str> = ranked.iter().map(|s| s.name).collect();
+    assert_eq!(names[0], nearest.name(), "{names:?}");
+    assert_eq!(names[0], "cells", "{names:?}");
+    assert_eq!(names[RENDER_ORDERED], "noise", "{names:?}");
+    let noise = &ranked[RENDER_ORDERED];
+    let recorded = noise
+        .nearer_render_margin
+        .expect("measured where noise led");
+    assert!(recorded > NEARER_RENDER_MARGIN, "{recorded}");
+    let (pattern, swapped) = ranked[0].pattern.as_ref().expect("a family");
+    let round = FirstRound::new(db, &pebbles, pattern, &opts, *swapped);
+    let family = round.amplitude_fit().params;
+    let margin = nearer_render_margin(
+        &pebbles,
+        noise.preview.as_ref().expect("fitted"),
+        &family,
+        &Tile::new_2d(opts.seed),
+    );
+    assert_eq!(margin, recorded);
+    // Choosing it adopts its final fit, which goes on from the ranking's first round: the same
+    // as the whole final fit.
+    let (auto, _) = analyze_with_model(
+        db,
+        &pebbles,
+        &opts,
+        ModelChoice::Auto,
+        Refinement::default(),
+    );
+    assert_eq!(auto, round.complete(db));
+    assert_eq!(auto, fit_structured(db, &pebbles, pattern, &opts, *swapped));
+    // The families' own rows record nothing.
+    assert!(
+        ranked[..RENDER_ORDERED]
+            .iter()
+            .all(|s| s.nearer_render_margin.is_none())
+    );
+
+    let gravel = common::dev_quadrant("scorched3d_gravel_256.png");
+    let ranked = rank_with(db, &gravel, &opts, Refinement::default(), 1, &|_, _| true);
+    assert_eq!(ranked[0].name, "noise");
+    let margin = ranked[0]
+        .nearer_render_margin
+        .expect("measured where noise led");
+    assert!(margin <= NEARER_RENDER_MARGIN, "{margin}");
+}
+
 /// A photo no larger than the ranking's copy is ranked unreduced: the noise model's fit there is
 /// the analysis that choosing it runs, and the automatic analysis uses it as it is: the same
 /// analysis as the noise model's own, and the ranking's noise row shows its params.

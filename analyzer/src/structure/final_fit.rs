@@ -62,13 +62,49 @@ pub fn fit_structured(
     opts: &Options,
     swapped: bool,
 ) -> Analysis {
-    let fit = FinalFit::new(db, photo, pattern, opts, swapped);
-    let first: Vec<usize> = (0..fit.amplitudes()).collect();
-    let first = crate::parallel::map_in_order(&first, |&k| fit.amplitude(db, k));
-    let chosen = fit.chosen(&first);
-    let rest: Vec<usize> = (1..=fit.variants()).collect();
-    let rest = crate::parallel::map_in_order(&rest, |&k| fit.variant(db, k, chosen));
-    fit.finish(first.into_iter().chain(rest))
+    FirstRound::new(db, photo, pattern, opts, swapped).complete(db)
+}
+
+/// Step 6's first round done: the refined pattern fitted and scored at every residual
+/// amplitude ([`FinalFit::amplitude`]). What the ranking renders to compare a family with the
+/// noise model (`retrieve::NEARER_RENDER_MARGIN`: [`FirstRound::amplitude_fit`]), and, where that
+/// family is then chosen, the start of its [`fit_structured`] ([`FirstRound::complete`]).
+#[derive(Debug)]
+pub struct FirstRound {
+    fit: FinalFit,
+    first: Vec<Scored>,
+}
+
+impl FirstRound {
+    /// Steps 1–4 and step 6's first round (its amplitudes in parallel on native).
+    pub fn new(
+        db: &crate::db::Db,
+        photo: &Photo,
+        pattern: &Pattern,
+        opts: &Options,
+        swapped: bool,
+    ) -> FirstRound {
+        let fit = FinalFit::new(db, photo, pattern, opts, swapped);
+        let first: Vec<usize> = (0..fit.amplitudes()).collect();
+        let first = crate::parallel::map_in_order(&first, |&k| fit.amplitude(db, k));
+        FirstRound { fit, first }
+    }
+
+    /// The best of the first round with its own tone curve: the final fit without the rougher
+    /// variants (about two thirds of its time for a lattice or cells).
+    pub fn amplitude_fit(&self) -> Analysis {
+        self.fit.finish(self.first.clone())
+    }
+
+    /// The rest of step 6 (the rougher variants at the chosen amplitude, the best with its tone
+    /// curve): [`fit_structured`], bit for bit.
+    pub fn complete(self, db: &crate::db::Db) -> Analysis {
+        let FirstRound { fit, first } = self;
+        let chosen = fit.chosen(&first);
+        let rest: Vec<usize> = (1..=fit.variants()).collect();
+        let rest = crate::parallel::map_in_order(&rest, |&k| fit.variant(db, k, chosen));
+        fit.finish(first.into_iter().chain(rest))
+    }
 }
 
 /// One scored fit of step 6: its score (lower is better: the render of the user's seed against
