@@ -155,8 +155,9 @@ pub struct PatchChoice {
     /// (`tools/devset_null_gate_cv.py`).
     pub noise_render_margin: f64,
     /// Where the ranking's other rules put the noise model first: how much nearer the patch is
-    /// to its nearest family's final render than to the noise model's in the scattering space
-    /// (the ranking's [`crate::retrieve::Suggestion::nearer_render_margin`]); negative infinity
+    /// to the first round of its nearest family's final fit than to the noise model's render in
+    /// the scattering space (the ranking's
+    /// [`crate::retrieve::Suggestion::nearer_render_margin`]); negative infinity
     /// elsewhere (JSON `null`). What choosing [`crate::retrieve::NEARER_RENDER_MARGIN`] again
     /// needs (`tools/devset_nearer_render_cv.py`).
     pub nearer_render_margin: f64,

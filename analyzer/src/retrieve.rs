@@ -122,9 +122,9 @@ pub struct Suggestion {
     /// render-ordered ([`Fit`]).
     pub render_classes: Option<Vec<(Class, f64)>>,
     /// For the noise model where the ranking's other rules put it first: how much nearer the
-    /// photo is to the classifier's nearest family's final render than to the noise model's in
-    /// the scattering space ([`nearer_render_margin`], [`NEARER_RENDER_MARGIN`]); `None`
-    /// elsewhere.
+    /// photo is to the first round of the classifier's nearest family's final fit than to the
+    /// noise model's render in the scattering space ([`nearer_render_margin`],
+    /// [`NEARER_RENDER_MARGIN`]); `None` elsewhere.
     pub nearer_render_margin: Option<f64>,
 }
 

@@ -197,11 +197,17 @@ pub fn texture_distance(
 /// `params` rendered at the size of the photo whose two-tone line is `tt`, as the ranking
 /// renders its candidates (with `tile`, the photo's noise tile).
 fn ranking_render(tt: &TwoTone, params: &Params, tile: &Tile) -> Photo {
+    render_sized(params, tile, tt.width, tt.height)
+}
+
+/// `params` rendered at `width × height` from the origin at one texel per pixel, as the ranking
+/// renders its candidates (with `tile`, the photo's noise tile).
+fn render_sized(params: &Params, tile: &Tile, width: u32, height: u32) -> Photo {
     render_prepared(
         &Prepared::new(params),
         tile,
-        tt.width,
-        tt.height,
+        width,
+        height,
         &View::default(),
     )
     .to_photo()
@@ -230,15 +236,7 @@ pub fn nearer_render_margin(small: &Photo, noise: &Params, family: &Params, tile
 
 /// The scattering features of `params` rendered as the ranking renders its candidates.
 fn render_scattering(small: &Photo, params: &Params, tile: &Tile) -> Vec<f64> {
-    let image = render_prepared(
-        &Prepared::new(params),
-        tile,
-        small.width,
-        small.height,
-        &View::default(),
-    )
-    .to_photo();
-    crate::scattering::features(&image)
+    crate::scattering::features(&render_sized(params, tile, small.width, small.height))
 }
 
 /// The scattering features of the photo and of the noise model's render (in parallel on
@@ -426,8 +424,8 @@ impl Suggester {
                 let winner = if by_score { &noise } else { &families[b] };
                 let unexplained = self.unexplained(winner) > RENDER_NULL_MARGIN;
                 // Where the noise model stays first, the nearest family's render may still be
-                // nearer to the photo ([`NEARER_RENDER_MARGIN`]); measured only then (the
-                // family's final fit, two renders and three scatterings).
+                // nearer to the photo ([`NEARER_RENDER_MARGIN`]); measured only then (the first
+                // round of the family's final fit, two renders and three scatterings).
                 if by_score && !unexplained {
                     noise.nearer_render_margin = self.nearer_family_render(db, &noise, &tile);
                 }
@@ -504,11 +502,11 @@ impl Suggester {
         }
     }
 
-    /// [`nearer_render_margin`] of the fitted noise model against the final fit
-    /// ([`fit_structured`]) of the classifier's nearest family (the first of `order`); `None`
-    /// where the classifier knows none of the families. The final fit is kept
-    /// ([`Suggester::nearest_final_fit`]): where the family comes first it is the fit that
-    /// choosing it adopts.
+    /// [`nearer_render_margin`] of the fitted noise model against the first round of the final
+    /// fit ([`FirstRound`]) of the classifier's nearest family (the first of `order`); `None`
+    /// where the classifier knows none of the families. The round is kept
+    /// ([`Suggester::take_nearest_first_round`]): where the family comes first, choosing it
+    /// finishes that fit.
     fn nearer_family_render(&self, db: &Db, noise: &Suggestion, tile: &Tile) -> Option<f64> {
         let &i = self.order.first()?;
         let (p, _, swapped) = &self.refined[i];
