@@ -49,7 +49,7 @@ worker.onmessage = (e) => {
       lastSuggestions = {
         rows: JSON.parse(m.rows), ms: m.ms, refinedMs: m.refinedMs, cancelled: m.cancelled, timedOut: m.timedOut,
         helpers: m.helpers, helped: m.helped, fitTasks: m.fitTasks, fitHelped: m.fitHelped,
-        orderTasks: m.orderTasks, orderHelped: m.orderHelped,
+        orderTasks: m.orderTasks, orderHelped: m.orderHelped, nearer: m.nearer,
         count: (lastSuggestions?.count ?? 0) + 1,
         id: m.id, fittedMs: null,
       };

@@ -1,7 +1,8 @@
 // A helper of the analysis worker (worker.js starts up to three): it refines model families
 // of the current suggestion job in parallel with the analysis worker, one family per message,
-// then fits the families whose renders order the list, then runs tasks of the adopted model's
-// final fit the same way. It loads the same wasm and
+// then fits the families whose renders order the list, then runs tasks of the nearer-render
+// rule's first round (on the ranking's photo: `small`) and scatters for it, then tasks of the
+// adopted model's final fit the same way. It loads the same wasm and
 // pattern database, rebuilds the job's retrieval from the job's prepared photo and seed
 // (`Refiner`), and returns each result (a refinement, a family's fit or a scored fit as JSON,
 // a tone render as pixels), which the analysis worker stores with `Suggestions.setRefined`,
@@ -30,23 +31,26 @@ onmessage = async (e) => {
     if (m.type === 'fitPrepare') {
       // Errors surface with the first task of this fit, which prepares it again.
       if (current && current.token === m.token) {
-        try { current.refiner.fitPrepare(m.pattern); } catch { /* see above */ }
+        try { current.refiner.fitPrepare(m.pattern, !!m.small); } catch { /* see above */ }
       }
       return;
     }
     if (!current || current.token !== m.token) throw new Error('no photo for this job');
     if (m.type === 'fitTone') {
-      const rgb = current.refiner.fitTone(m.params, m.task.tone);
+      const rgb = current.refiner.fitTone(m.params, m.task.tone, !!m.small);
       postMessage({ token: m.token, task: m.task, rgb }, [rgb.buffer]);
+    } else if (m.type === 'scatter') {
+      const both = current.refiner.nearerScatterings(m.noise);
+      postMessage({ token: m.token, task: m.task, both }, [both.buffer]);
     } else if (m.type === 'refine' || m.type === 'order' || m.type === 'fit') {
       let json;
       if (m.type === 'refine') json = current.refiner.refine(m.task.family);
       else if (m.type === 'order') json = current.refiner.orderFit(m.task.family, m.refined);
-      else json = current.refiner.fitTask(m.pattern, m.task.index, m.chosen);
+      else json = current.refiner.fitTask(m.pattern, m.task.index, m.chosen, !!m.small);
       postMessage({ token: m.token, task: m.task, json });
     }
   } catch (err) {
-    if (m.type === 'refine' || m.type === 'order' || m.type === 'fit' || m.type === 'fitTone') {
+    if (['refine', 'order', 'fit', 'fitTone', 'scatter'].includes(m.type)) {
       postMessage({ token: m.token, task: m.task, error: String(err.message ?? err) });
     }
   }

@@ -80,7 +80,10 @@ dbReady.catch(() => {}); // reported per photo, below
 // Tasks are `{ kind: 'refine', family }`; once the refinement is over (`finished`),
 // `{ kind: 'order', family }`: the fits of the families the classifier puts first, whose renders
 // order the list (`orderFits()`), while this worker fits the noise model (`ordering`: { noise,
-// stored, helped, done }); once the list is ranked and a model family is its best, `{ kind: 'fit',
+// stored, helped, done }); where the ranking then compares the classifier's nearest family's
+// render with the noise model's, that family's first round as a fit's tasks (below, with
+// `nearer`) and one `{ kind: 'scatter', gen }` (`nearer`: its time and tasks, for the list's
+// message); once the list is ranked and a model family is its best, `{ kind: 'fit',
 // index, gen }`: the final fit of the adopted model (step 6 of
 // the structured fit) in rounds of tasks (`fitPending()`), shared the same way; `fit`: its state
 // ({ gen, pattern, tasks, helped, done, finish }) until `finish` sends its report: with the list
@@ -153,6 +156,7 @@ function helperDone(h, m) {
     return;
   }
   s.inflight--;
+  if (m.task.kind === 'scatter' && s.fit?.gen === m.task.gen) s.fit.scattering = false;
   if (m.error) {
     h.broken = true;
     // This worker runs it instead, unless the job has moved past it (a refinement that failed
@@ -168,6 +172,9 @@ function helperDone(h, m) {
   } else if (m.task.kind === 'order' && !s.ordering.done) {
     s.job.setOrderFit(m.task.family, m.json);
     s.ordering.helped++;
+  } else if (m.task.kind === 'scatter' && s.fit?.gen === m.task.gen && !s.fit.done) {
+    s.job.setNearerScatterings(s.fit.noise, m.both);
+    s.fit.scattered = true;
   } else if (m.task.kind === 'fit' && s.fit?.gen === m.task.gen && !s.fit.done) {
     if (m.rgb) s.job.setFitTone(m.task.index, m.rgb);
     else s.job.setFitTask(m.task.index, m.json);
@@ -177,7 +184,7 @@ function helperDone(h, m) {
   // This worker waits only while helpers hold tasks: wake it when the last one is back, a
   // task came back to `todo`, or an ordering fit is in (a cancelled refinement's family may
   // still be out).
-  if (s.waiting && (s.inflight === 0 || s.todo.length > 0 || m.task.kind === 'order')) {
+  if (s.waiting && (fitInflight(s) === 0 || s.todo.length > 0 || m.task.kind === 'order')) {
     s.waiting = false;
     scheduleStep(s);
   }
@@ -188,6 +195,8 @@ function dispatch(s, h) {
   if (h.broken || h.job || h.token !== s.token || s.todo.length === 0) return;
   if (helpers.indexOf(h) >= helperLimit) return; // e2e/bench: fewer helpers from now on
   if (s.fit ? s.fit.done : s.ordering ? s.ordering.done : s.finished || s.cancelled) return;
+  const next = s.todo[s.todo.length - 1];
+  if (next.kind === 'fit' && next.tone === undefined && h.fitGen !== next.gen) return;
   const task = s.todo.pop();
   h.job = { token: s.token, task };
   s.inflight++;
@@ -195,11 +204,15 @@ function dispatch(s, h) {
     h.worker.postMessage({ type: 'refine', token: s.token, task });
   } else if (task.kind === 'order') {
     h.worker.postMessage({ type: 'order', token: s.token, task, refined: s.job.refinedOf(task.family) });
+  } else if (task.kind === 'scatter') {
+    s.fit.scattering = true;
+    h.worker.postMessage({ type: 'scatter', token: s.token, task, noise: s.fit.noise });
   } else if (task.tone !== undefined) {
-    h.worker.postMessage({ type: 'fitTone', token: s.token, task, params: s.fit.best });
+    h.worker.postMessage({ type: 'fitTone', token: s.token, task, params: s.fit.best, small: s.fit.nearer });
   } else {
     h.worker.postMessage({
       type: 'fit', token: s.token, task, pattern: s.fit.pattern, chosen: s.job.fitChosen(),
+      small: s.fit.nearer,
     });
   }
 }
@@ -354,7 +367,24 @@ function orderStep(s) {
     return;
   }
   o.done = true;
-  rankList(s);
+  nearerThenRank(s);
+}
+
+// Where the ranking will compare the classifier's nearest family's render with the noise
+// model's (the nearer-render rule), the first round of that family's final fit runs first, in
+// tasks shared with the helpers as a final fit's are (`fit.nearer`: on the ranking's photo),
+// and one helper scatters the photo and the noise model's render meanwhile; then the list.
+function nearerThenRank(s) {
+  const pattern = s.job.nearerPattern();
+  if (!pattern) return rankList(s);
+  const t0 = performance.now();
+  beginFit(s, -1, pattern, null, () => {
+    const f = s.fit;
+    s.nearer = { ms: performance.now() - t0, tasks: f.tasks, helped: f.helped, scattered: f.scattered };
+    [s.fit, s.todo] = [null, []];
+    rankList(s);
+  }, true);
+  fitStep(s);
 }
 
 // Ranks the list (every fit that orders it is stored) and begins its best row's final fit.
@@ -375,18 +405,34 @@ function rankList(s) {
 // Begins the final fit of ranked row `index` (its `pattern`, `Suggestions.rowPattern`) in
 // tasks; `finish` takes its report. `adoption`: the id of the 'adopt' request it answers (null:
 // the list's own best row). The helpers build their own fit of the pattern meanwhile.
-function beginFit(s, index, pattern, adoption, finish) {
+// `nearer`: the nearer-render rule's first round instead (`Suggestions.beginNearer`; `finish`
+// takes nothing), with the scatterings' task for a helper (the first to take a task).
+function beginFit(s, index, pattern, adoption, finish, nearer = false) {
   s.fit = {
     gen: ++fitGens, index, pattern, adoption, finish, tasks: 0, helped: 0, done: false,
-    t0: performance.now(),
+    t0: performance.now(), nearer, scattering: false, scattered: false,
+    noise: nearer ? s.job.noiseParams() : null,
   };
   s.todo = [];
   s.waiting = false;
   engageHelpers(s);
-  for (const h of helperPool()) {
-    if (!h.broken && h.token === s.token) h.worker.postMessage({ type: 'fitPrepare', token: s.token, pattern });
+  const gen = s.fit.gen;
+  if (nearer && s.helpers > 0) {
+    // A helper scatters while this worker builds its fit (the helpers take from the back of
+    // `todo`; each round is listed in front); this worker drops it if no helper took it.
+    s.todo.push({ kind: 'scatter', gen });
+    for (const h of helperPool()) dispatch(s, h);
   }
-  s.job.beginFit(index);
+  // The other helpers build their own fit meanwhile; the scattering one takes only the tone
+  // renders, which need none (`fitGen`: the fit a helper has built).
+  for (const h of helperPool()) {
+    if (!h.broken && h.token === s.token && h.job?.task.kind !== 'scatter') {
+      h.worker.postMessage({ type: 'fitPrepare', token: s.token, pattern, small: nearer });
+      h.fitGen = gen;
+    }
+  }
+  if (nearer) s.job.beginNearer();
+  else s.job.beginFit(index);
 }
 
 // Adopts ranked row `index` of `s` for request `id`: a structured row's final fit in tasks
@@ -410,30 +456,47 @@ function adoptInTasks(s, id, index) {
   return true;
 }
 
+// The final fit's tasks in flight at the helpers (every task but the scatterings').
+function fitInflight(s) {
+  return s.inflight - (s.fit?.scattering ? 1 : 0);
+}
+
+// Lists the final fit's next round in front of `todo` (where the scatterings' task may wait).
+// Rounds: the residual's amplitudes, the rougher variants, then the renders that the best fit's
+// tone curve pools (`tone`: their tasks travel as pixels, not JSON).
+function listFitRound(s) {
+  const scored = s.job.fitScoredTasks();
+  const gen = s.fit.gen;
+  const round = Array.from(s.job.fitPending(), (index) => (index >= scored
+    ? { kind: 'fit', index, gen, tone: index - scored } : { kind: 'fit', index, gen }));
+  if (round.length === 0) return;
+  if (round.some((t) => t.tone !== undefined)) s.fit.best = s.job.fitBestParams();
+  s.fit.tasks += round.length;
+  s.todo = round.concat(s.todo);
+  for (const h of helperPool()) dispatch(s, h);
+}
+
 // One task of the final fit per queued step (a new photo supersedes it between steps; Cancel
 // does not stop it: the list is ranked by then); the report and the list go out at the end.
 function fitStep(s) {
   if (s.fit.done) return;
-  if (s.todo.length === 0 && s.inflight === 0) {
-    // Rounds: the residual's amplitudes, the rougher variants, then the renders that the best
-    // fit's tone curve pools (`tone`: their tasks travel as pixels, not JSON).
-    const scored = s.job.fitScoredTasks();
-    const gen = s.fit.gen;
-    s.todo = Array.from(s.job.fitPending(), (index) => (index >= scored
-      ? { kind: 'fit', index, gen, tone: index - scored } : { kind: 'fit', index, gen }));
-    if (s.todo.some((t) => t.tone !== undefined)) s.fit.best = s.job.fitBestParams();
-    s.fit.tasks += s.todo.length;
-    for (const h of helperPool()) dispatch(s, h);
-  }
+  if (fitInflight(s) === 0 && !s.todo.some((t) => t.kind === 'fit')) listFitRound(s);
   if (s.todo.length > 0) {
     const task = s.todo.shift();
+    // (A scatterings' task that no helper took is dropped: the ranking scatters.)
     if (task.tone !== undefined) s.job.setFitTone(task.index, s.job.fitTone(task.index));
-    else s.job.setFitTask(task.index, s.job.fitTask(task.index));
+    else if (task.kind === 'fit') s.job.setFitTask(task.index, s.job.fitTask(task.index));
     scheduleStep(s);
     return;
   }
   if (s.inflight > 0) {
     s.waiting = true; // a helper's reply wakes it up
+    return;
+  }
+  if (s.fit.nearer) {
+    s.job.finishNearer();
+    s.fit.done = true;
+    s.fit.finish();
     return;
   }
   const report = s.job.fitReport(); // before `done`: an error here answers a pick's request
@@ -447,6 +510,7 @@ function postSuggestions(s, rows, thumbs, best) {
     ms: performance.now() - s.t0, refinedMs: s.refinedMs, helpers: s.helpers, helped: s.helped,
     fitTasks: s.fit?.tasks ?? 0, fitHelped: s.fit?.helped ?? 0,
     orderTasks: s.orderTasks, orderHelped: s.ordering?.helped ?? 0,
+    nearer: s.nearer ?? null,
   }, [thumbs.buffer]);
   fitRows(s);
 }

@@ -334,6 +334,11 @@ pub struct Suggester {
     /// the same refinement and for choosing that family
     /// ([`Suggester::take_nearest_first_round`]).
     nearest_first_round: std::sync::Arc<std::sync::Mutex<Option<rank::NearestFirstRound>>>,
+    /// The photo's and the noise render's scatterings for [`NEARER_RENDER_MARGIN`] where
+    /// computed elsewhere ([`Suggester::set_nearer_scatterings`]).
+    nearer_scatterings: Option<rank::NearerScatterings>,
+    /// The photo's own patch-to-patch distance ([`rank::self_distance`]), once computed.
+    self_distance: std::sync::OnceLock<f32>,
 }
 
 /// A candidate fitted on the reduced photo: its parameters, the texture distance of their
@@ -412,6 +417,8 @@ impl Suggester {
             classes,
             nearest_family,
             nearest_first_round: Default::default(),
+            nearer_scatterings: None,
+            self_distance: std::sync::OnceLock::new(),
         }
     }
 

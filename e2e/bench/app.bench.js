@@ -199,8 +199,10 @@ test('benchmark: model retrieval for a 256² query in WASM, and what refinement 
         `adopted ${t.ms.toFixed(0)} ms with ${t.helpers} helper workers (target 3000 ms: ratio ` +
         `${(t.ms / 3000).toFixed(2)}); the refinement ${t.refinedMs.toFixed(0)} ms, then the ranking and the best ` +
         `row's final fit ${(t.ms - t.refinedMs).toFixed(0)} ms (${t.orderHelped} of the ${t.orderTasks} fits that order ` +
-        `the list and ${t.fitHelped} of ${t.fitTasks} final-fit tasks by the helpers); ` +
-        `first: ${t.rows[0].name}`);
+        `the list and ${t.fitHelped} of ${t.fitTasks} final-fit tasks by the helpers; ` +
+        (t.nearer ? `the nearer render's first round ${t.nearer.ms.toFixed(0)} ms, ${t.nearer.helped} of ` +
+          `${t.nearer.tasks} of its tasks by the helpers, scattered there: ${t.nearer.scattered}` : 'no nearer render') +
+        `); first: ${t.rows[0].name}`);
   }
   await page.evaluate(() => window.proctex.setFlatShader(false));
   if (QUICK) refinementLine('skimage_brick_512.png', timed[3]);

@@ -174,12 +174,37 @@ async function morphRockToGrass(page) {
 // Loads a shipped sample and waits for its ranked suggestions.
 // `crop` ([x, y, w, h], optional): that rectangle of the sample, analysed as a photo of its own.
 async function suggestionsFor(page, sample, crop) {
+  return suggestionsAfter(page, `${sample}${crop ? ` [${crop}]` : ''}`, async () => {
+    if (crop) await page.evaluate(([n, c]) => window.proctex.loadSampleCrop(n, c), [sample, crop]);
+    else await page.evaluate((n) => window.proctex.loadSample(n), sample);
+  });
+}
+
+// `suggestionsFor` a PNG file's top-left `w × h` (a photo that is not a sample), loaded as
+// pixels.
+async function suggestionsForFile(page, file, w, h) {
+  const { PNG } = require('pngjs');
+  const png = PNG.sync.read(fs.readFileSync(file));
+  const rgba = [];
+  for (let y = 0; y < h; y++) {
+    for (let x = 0; x < w; x++) {
+      const i = (y * png.width + x) * 4;
+      rgba.push(png.data[i], png.data[i + 1], png.data[i + 2], 255);
+    }
+  }
+  const name = `${path.basename(file)} [0, 0, ${w}, ${h}]`;
+  return suggestionsAfter(page, name, () => page.evaluate(([px, ww, hh, n]) =>
+    window.proctex.loadPixels(new Uint8ClampedArray(px), ww, hh, n), [rgba, w, h, name]));
+}
+
+// The app's state once the photo that `load` loads is analysed and ranked (`label` names it in
+// the log).
+async function suggestionsAfter(page, label, load) {
   const before = [
     (await state(page)).analyses,
     await page.evaluate(() => window.proctex.lastSuggestions()?.count ?? 0),
   ];
-  if (crop) await page.evaluate(([n, c]) => window.proctex.loadSampleCrop(n, c), [sample, crop]);
-  else await page.evaluate((n) => window.proctex.loadSample(n), sample);
+  await load();
   // The worker's ranking first, without waking the app: each frame of the software adapter
   // costs CPU that the worker and its helpers would otherwise have. The list comes with what
   // decides its order fitted; every other row's fit follows (`fittedMs`): wait for them all.
@@ -197,7 +222,7 @@ async function suggestionsFor(page, sample, crop) {
   await waitFrames(page, 3);
   const s = await state(page);
   const t = await page.evaluate(() => window.proctex.lastSuggestions());
-  console.log(`${sample}${crop ? ` [${crop}]` : ''}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
+  console.log(`${label}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
     `(retrieval to ranking ${t.ms.toFixed(0)} ms, of which the ranking and the best row's final fit ` +
     `${(t.ms - t.refinedMs).toFixed(0)} ms; every row fitted ` +
     `${t.fittedMs === null ? 'with it' : `${t.fittedMs.toFixed(0)} ms`}; ${t.helped} of ${s.suggestions.length - 1} ` +
@@ -231,6 +256,6 @@ async function dropFile(page, filePath, kind) {
 module.exports = {
   expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats,
   cliRender, CLI,
-  innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, ROOT,
+  innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, suggestionsForFile, ROOT,
   dropFile,
 };

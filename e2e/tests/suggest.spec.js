@@ -5,7 +5,9 @@
 const { test } = require('@playwright/test');
 const { execFileSync } = require('child_process');
 const path = require('path');
-const { expect, openApp, state, waitFrames, grab, innerSquare, reveal, clickWidget, suggestionsFor, CLI, ROOT } = require('./helpers');
+const {
+  expect, openApp, state, waitFrames, grab, innerSquare, reveal, clickWidget, suggestionsFor, suggestionsForFile, CLI, ROOT,
+} = require('./helpers');
 
 const patternOf = (json) => {
   const p = JSON.parse(json);
@@ -144,6 +146,40 @@ test('a gravel photo ranks the noise model first and keeps it', async ({ page })
   expect(s.suggestions[0].name).toBe('noise');
   expect(s.adopted).toBe(0);
   expect(patternOf(await page.evaluate(() => window.proctex.getParams()))).toBe('noise');
+  // The noise model led, so the ranking compared the classifier's nearest family's render with
+  // it: that family's first round ran before the list in tasks shared with the helper workers,
+  // one of which scattered the photo and the noise model's render.
+  expectNearerInTasks(await page.evaluate(() => window.proctex.lastSuggestions()));
+});
+
+// The nearer-render rule's fit ran in tasks before the list (`t`: `lastSuggestions()`), shared
+// with the helper workers where there are any.
+function expectNearerInTasks(t) {
+  console.log(`the nearer render's first round: ${t.nearer?.ms.toFixed(0)} ms, ${t.nearer?.helped} of ` +
+    `${t.nearer?.tasks} tasks by ${t.helpers} helper workers; scattered there: ${t.nearer?.scattered}`);
+  expect(t.nearer).not.toBeNull();
+  expect(t.nearer.tasks).toBeGreaterThan(1);
+  if (t.helpers > 0) {
+    expect(t.nearer.helped).toBeGreaterThan(0);
+    expect(t.nearer.scattered).toBe(true);
+  }
+}
+
+test("a pebble bed's nearest family comes first by its render, and its fit is the CLI's", async ({ page }) => {
+  // A development photo's top-left quadrant (a pebble bed, labelled cells) on which the noise
+  // model leads by texture distance but the cells' render is the nearer in the scattering space.
+  const file = path.join(ROOT, '..', 'shared', 'photos', 'dev', 'openarena_pebbles_256.png');
+  await openApp(page);
+  const s = await suggestionsForFile(page, file, 128, 128);
+  expect(s.suggestions[0].name).toBe('cells');
+  expect(s.adopted).toBe(0);
+  const t = await page.evaluate(() => window.proctex.lastSuggestions());
+  expectNearerInTasks(t);
+  // The adopted fit went on from that first round: the CLI's analysis of the same crop.
+  const cli = JSON.parse(execFileSync(CLI, ['analyze', file, '--crop', '0,0,128,128', '--json'],
+    { stdio: ['ignore', 'pipe', 'ignore'] }).toString());
+  expect(cli.model.pattern.kind).toBe('cells');
+  expectClose(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model, cli.model, 'model');
 });
 
 test("a structured model's sliders change the image", async ({ page }) => {

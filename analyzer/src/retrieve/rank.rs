@@ -224,6 +224,29 @@ pub struct NearestFirstRound {
     pub params: Params,
 }
 
+/// [`Suggester::ranked`]'s candidates scored, before the nearer-render rule: the noise model,
+/// the families in the classifier's order (the first `ordered` fitted and scored), the best of
+/// those by score, whether the noise model's score beats it (and no dark network), and
+/// whether the winner's render leaves the photo's nearest family unexplained
+/// ([`RENDER_NULL_MARGIN`]).
+struct Listing {
+    noise: Suggestion,
+    families: Vec<Suggestion>,
+    ordered: usize,
+    best: Option<usize>,
+    by_score: bool,
+    unexplained: bool,
+}
+
+/// Scatterings for [`NEARER_RENDER_MARGIN`] computed elsewhere: the photo's and the render's of
+/// the noise model fitted as `noise`.
+#[derive(Clone, Debug)]
+pub(super) struct NearerScatterings {
+    noise: Params,
+    photo: Vec<f64>,
+    noise_render: Vec<f64>,
+}
+
 /// How much nearer the photo `small` (the ranking's reduced photo) is to the render of `family`
 /// than to the render of `noise` in the scattering space: `|S(photo) − S(noise render)| −
 /// |S(photo) − S(family render)|`, both rendered as the ranking renders its candidates (at the
@@ -322,6 +345,55 @@ impl Suggester {
     /// one by one).
     pub fn ranked(&self, db: &Db, fitted: usize) -> Vec<Suggestion> {
         let tile = Tile::new_2d(self.opts.seed);
+        let Listing {
+            mut noise,
+            mut families,
+            ordered,
+            best,
+            by_score,
+            unexplained,
+        } = self.listing(db, fitted, &tile);
+        // The first is the family with the best score, or the noise model where its score is
+        // lower; but the classifier's nearest family (the first in `order`) where the photo
+        // looks more like it to the classifier than that first candidate's own render does
+        // ([`RENDER_NULL_MARGIN`]). The other families keep the classifier's order. The noise
+        // model is first when its score is no larger than the best family's, except on a photo
+        // with a dark network or where its render does not explain the photo's nearest family;
+        // otherwise it follows the fitted families: still offered, never first, and not among
+        // the first three where the fitted families fill them.
+        let noise_first = match best {
+            Some(b) => {
+                // Where the noise model stays first, the nearest family's render may still be
+                // nearer to the photo ([`NEARER_RENDER_MARGIN`]); measured only then (the first
+                // round of the family's final fit, two renders and three scatterings).
+                if by_score && !unexplained {
+                    noise.nearer_render_margin = self.nearer_family_render(db, &noise, &tile);
+                }
+                let nearer_family = noise
+                    .nearer_render_margin
+                    .is_some_and(|m| m > NEARER_RENDER_MARGIN);
+                let first = if unexplained || nearer_family { 0 } else { b };
+                families[..=first].rotate_right(1);
+                by_score && !unexplained && !nearer_family
+            }
+            None => true,
+        };
+        let rest = families.split_off(ordered);
+        let mut out = Vec::with_capacity(families.len() + rest.len() + 1);
+        if noise_first {
+            out.push(noise);
+            out.extend(families);
+        } else {
+            out.extend(families);
+            out.push(noise);
+        }
+        out.extend(rest);
+        out
+    }
+
+    /// The candidates of [`Suggester::ranked`] scored, before the nearer-render rule orders
+    /// them: the first `fitted` families (at least the render-ordered ones) fitted.
+    fn listing(&self, db: &Db, fitted: usize, tile: &Tile) -> Listing {
         let margin = self.margin(db);
         let Fit {
             params: noise,
@@ -330,7 +402,7 @@ impl Suggester {
         } = self
             .noise_fit
             .clone()
-            .unwrap_or_else(|| self.fit_noise_with(db, &tile));
+            .unwrap_or_else(|| self.fit_noise_with(db, tile));
         let mut noise = Suggestion {
             name: "noise",
             pattern: None,
@@ -379,7 +451,7 @@ impl Suggester {
         let fits = crate::parallel::map_in_order(&order[..n], |&i| {
             self.fitted[i]
                 .clone()
-                .unwrap_or_else(|| self.fit_index(db, &tile, i))
+                .unwrap_or_else(|| self.fit_index(db, tile, i))
         });
         for (f, fit) in families.iter_mut().zip(fits) {
             f.distance = Some(fit.distance);
@@ -406,58 +478,39 @@ impl Suggester {
                 + CLASSIFIER_WEIGHT * class / 2.0 * self_distance
                 + margin;
         }
-        // The first is the family with the best score, or the noise model where its score is
-        // lower; but the classifier's nearest family (the first in `order`) where the photo
-        // looks more like it to the classifier than that first candidate's own render does
-        // ([`RENDER_NULL_MARGIN`]). The other families keep the classifier's order.
         let best = (0..ordered).min_by(|&a, &b| families[a].score.total_cmp(&families[b].score));
         // The noise model's score is its texture distance moved onto the best family's scale.
-        // It is first when that is no larger than the best family's score, except on a photo
-        // with a dark network or where its render does not explain the photo's nearest family;
-        // otherwise it follows the fitted families: still offered, never first, and not among
-        // the first three where the fitted families fill them.
-        let noise_first = match best {
+        let (by_score, unexplained) = match best {
             Some(b) => {
                 let best_distance = families[b].distance.expect("the best family is fitted");
                 noise.score = distance - (best_distance - families[b].score) - margin;
                 let by_score = !self.dark_network && noise.score <= families[b].score;
                 let winner = if by_score { &noise } else { &families[b] };
-                let unexplained = self.unexplained(winner) > RENDER_NULL_MARGIN;
-                // Where the noise model stays first, the nearest family's render may still be
-                // nearer to the photo ([`NEARER_RENDER_MARGIN`]); measured only then (the first
-                // round of the family's final fit, two renders and three scatterings).
-                if by_score && !unexplained {
-                    noise.nearer_render_margin = self.nearer_family_render(db, &noise, &tile);
-                }
-                let nearer_family = noise
-                    .nearer_render_margin
-                    .is_some_and(|m| m > NEARER_RENDER_MARGIN);
-                let first = if unexplained || nearer_family { 0 } else { b };
-                families[..=first].rotate_right(1);
-                by_score && !unexplained && !nearer_family
+                (by_score, self.unexplained(winner) > RENDER_NULL_MARGIN)
             }
             None => {
                 noise.score = distance;
-                true
+                (true, false)
             }
         };
-        let rest = families.split_off(ordered);
-        let mut out = Vec::with_capacity(families.len() + rest.len() + 1);
-        if noise_first {
-            out.push(noise);
-            out.extend(families);
-        } else {
-            out.extend(families);
-            out.push(noise);
+        Listing {
+            noise,
+            families,
+            ordered,
+            best,
+            by_score,
+            unexplained,
         }
-        out.extend(rest);
-        out
     }
 
     /// The margin of the structured candidates' scores: [`NOISE_MODEL_MARGIN`] × the photo's
-    /// own patch-to-patch distance.
+    /// own patch-to-patch distance (computed once: the ranking and
+    /// [`Suggester::nearer_render_pattern`] ask for it).
     fn margin(&self, db: &Db) -> f32 {
-        NOISE_MODEL_MARGIN * self_distance(db, &self.tt)
+        NOISE_MODEL_MARGIN
+            * *self
+                .self_distance
+                .get_or_init(|| self_distance(db, &self.tt))
     }
 
     /// The families (in `starts` order) whose fits order the list (the classifier's first
@@ -506,25 +559,26 @@ impl Suggester {
     /// fit ([`FirstRound`]) of the classifier's nearest family (the first of `order`); `None`
     /// where the classifier knows none of the families. The round is kept
     /// ([`Suggester::take_nearest_first_round`]): where the family comes first, choosing it
-    /// finishes that fit.
+    /// finishes that fit. What was stored from elsewhere (the round, the photo's and the noise
+    /// render's scatterings: [`Suggester::set_nearest_first_round`],
+    /// [`Suggester::set_nearer_scatterings`]) is used as it is.
     fn nearer_family_render(&self, db: &Db, noise: &Suggestion, tile: &Tile) -> Option<f64> {
-        let &i = self.order.first()?;
-        let (p, _, swapped) = &self.refined[i];
-        if Some(p.kind) != self.nearest_family {
-            return None;
-        }
+        let (p, swapped) = self.nearest_pattern()?;
         let noise = noise.preview.as_ref().expect("the noise model is fitted");
-        let mut p = p.clone();
-        p.scale *= self.per_px;
         let mut kept = self.nearest_first_round.lock().expect("not poisoned");
-        let reuse = matches!(kept.as_ref(), Some(k) if k.pattern == p && k.swapped == *swapped);
+        let reuse = matches!(kept.as_ref(), Some(k) if k.pattern == p && k.swapped == swapped);
+        let stored = self
+            .nearer_scatterings
+            .as_ref()
+            .filter(|s| s.noise == *noise)
+            .map(|s| (s.photo.clone(), s.noise_render.clone()));
         // The family's fit and the other two scatterings at once: the fit's rounds leave a
         // thread idle now and then.
         let ((photo, noise), fitted) = crate::parallel::join(
-            || photo_and_noise_scattering(&self.small, noise, tile),
+            || stored.unwrap_or_else(|| photo_and_noise_scattering(&self.small, noise, tile)),
             || {
                 (!reuse).then(|| {
-                    let round = FirstRound::new(db, &self.small, &p, &self.opts, *swapped);
+                    let round = FirstRound::new(db, &self.small, &p, &self.opts, swapped);
                     let params = round.amplitude_fit().params;
                     (round, params)
                 })
@@ -533,7 +587,7 @@ impl Suggester {
         if let Some((round, params)) = fitted {
             *kept = Some(NearestFirstRound {
                 pattern: p,
-                swapped: *swapped,
+                swapped,
                 round,
                 params,
             });
@@ -543,10 +597,97 @@ impl Suggester {
         Some(margin_of_scatterings(&photo, &noise, &family))
     }
 
+    /// The classifier's nearest family's refined pattern (in the reduced photo's pixels) and
+    /// tone pairing: the family [`NEARER_RENDER_MARGIN`] compares with the noise model; `None`
+    /// where the classifier knows none of the families.
+    fn nearest_pattern(&self) -> Option<(Pattern, bool)> {
+        let &i = self.order.first()?;
+        let (p, _, swapped) = &self.refined[i];
+        if Some(p.kind) != self.nearest_family {
+            return None;
+        }
+        let mut p = p.clone();
+        p.scale *= self.per_px;
+        Some((p, *swapped))
+    }
+
+    /// Where [`Suggester::ranked`] will compare the nearest family's render with the noise
+    /// model's ([`NEARER_RENDER_MARGIN`]) and has no first round of that family kept: the
+    /// family's pattern (in the pixels of [`Suggester::ranking_photo`]) and tone pairing, whose
+    /// first round a caller may run elsewhere in tasks ([`crate::structure::FinalFit`]) and
+    /// store ([`Suggester::set_nearest_first_round`]); likewise the two scatterings that do not
+    /// depend on it ([`Suggester::set_nearer_scatterings`]). Uses the stored fits of the noise
+    /// model and of the families that order the list (fitting those missing).
+    pub fn nearer_render_pattern(&self, db: &Db) -> Option<(Pattern, bool)> {
+        let listing = self.listing(db, 0, &Tile::new_2d(self.opts.seed));
+        if listing.best.is_none() || !listing.by_score || listing.unexplained {
+            return None;
+        }
+        let (p, swapped) = self.nearest_pattern()?;
+        let kept = self.nearest_first_round.lock().expect("not poisoned");
+        let fitted = matches!(kept.as_ref(), Some(k) if k.pattern == p && k.swapped == swapped);
+        (!fitted).then_some((p, swapped))
+    }
+
+    /// The photo the ranking fits and renders its candidates on (the photo reduced to
+    /// [`super::RANK_SIZE`]): what the nearest family's first round
+    /// ([`Suggester::nearer_render_pattern`]) is fitted on.
+    pub fn ranking_photo(&self) -> &Photo {
+        &self.small
+    }
+
+    /// Stores the first round of the final fit of `pattern` with `swapped` (what
+    /// [`Suggester::nearer_render_pattern`] named) on [`Suggester::ranking_photo`], and `params`,
+    /// its best amplitude with its tone curve ([`FirstRound::amplitude_fit`]'s), run elsewhere:
+    /// [`Suggester::ranked`] then renders those params instead of fitting them.
+    pub fn set_nearest_first_round(
+        &mut self,
+        pattern: Pattern,
+        swapped: bool,
+        round: FirstRound,
+        params: Params,
+    ) {
+        *self.nearest_first_round.lock().expect("not poisoned") = Some(NearestFirstRound {
+            pattern,
+            swapped,
+            round,
+            params,
+        });
+    }
+
+    /// The scattering features of [`Suggester::ranking_photo`]: what
+    /// [`Suggester::set_nearer_scatterings`] takes as the photo's.
+    pub fn photo_scattering(&self) -> Vec<f64> {
+        crate::scattering::features(&self.small)
+    }
+
+    /// The scattering features of `params` rendered as the ranking renders its candidates:
+    /// what [`Suggester::set_nearer_scatterings`] takes as the noise model's render's.
+    pub fn render_scattering(&self, params: &Params) -> Vec<f64> {
+        render_scattering(&self.small, params, &Tile::new_2d(self.opts.seed))
+    }
+
+    /// Stores the scatterings that [`NEARER_RENDER_MARGIN`] compares the family's render with,
+    /// computed elsewhere: the photo's ([`Suggester::photo_scattering`]) and that of the render
+    /// of `noise` ([`Suggester::render_scattering`]), used where `noise` is the noise model's
+    /// fit then.
+    pub fn set_nearer_scatterings(
+        &mut self,
+        noise: Params,
+        photo: Vec<f64>,
+        noise_render: Vec<f64>,
+    ) {
+        self.nearer_scatterings = Some(NearerScatterings {
+            noise,
+            photo,
+            noise_render,
+        });
+    }
+
     /// The first round of the nearest family's final fit that [`NEARER_RENDER_MARGIN`] made,
     /// where the ranking works on the photo unreduced (its pattern then in the photo's pixels):
     /// where that family is chosen, its final fit goes on from there. `None` otherwise.
-    pub(super) fn take_nearest_first_round(&self) -> Option<NearestFirstRound> {
+    pub fn take_nearest_first_round(&self) -> Option<NearestFirstRound> {
         let mut kept = self.nearest_first_round.lock().expect("not poisoned");
         if self.unreduced { kept.take() } else { None }
     }
@@ -555,6 +696,11 @@ impl Suggester {
     /// classes for its render (what [`Suggester::ranked`] computes for it).
     pub fn fit_noise(&self, db: &Db) -> Fit {
         self.fit_noise_with(db, &Tile::new_2d(self.opts.seed))
+    }
+
+    /// The noise model's fit where stored ([`Suggester::set_noise_fit`]).
+    pub fn stored_noise_fit(&self) -> Option<&Fit> {
+        self.noise_fit.as_ref()
     }
 
     /// Stores the noise model's fit ([`Suggester::fit_noise`]).

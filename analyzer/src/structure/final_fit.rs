@@ -90,6 +90,18 @@ impl FirstRound {
         FirstRound { fit, first }
     }
 
+    /// The first round run elsewhere in tasks: `fit` and its scored amplitudes in task order
+    /// ([`FinalFit::amplitude`] `0..amplitudes`); `None` when their number is not
+    /// [`FinalFit::amplitudes`].
+    pub fn from_scored(fit: FinalFit, first: Vec<Scored>) -> Option<FirstRound> {
+        (first.len() == fit.amplitudes()).then_some(FirstRound { fit, first })
+    }
+
+    /// The fit and its first round's scored amplitudes (in task order), for going on in tasks.
+    pub fn into_parts(self) -> (FinalFit, Vec<Scored>) {
+        (self.fit, self.first)
+    }
+
     /// The best of the first round with its own tone curve: the final fit without the rougher
     /// variants (about two thirds of its time for a lattice or cells).
     pub fn amplitude_fit(&self) -> Analysis {

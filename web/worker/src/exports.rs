@@ -225,6 +225,57 @@ impl Suggestions {
         self.job.row_pattern(i).unwrap_or_default()
     }
 
+    /// The pattern `beginNearer` would begin (empty: none needed), without beginning it: what
+    /// the helpers prepare their own fit of (`Refiner.fitPrepare` on the ranking's photo) while
+    /// `beginNearer` builds the job's.
+    #[wasm_bindgen(js_name = nearerPattern)]
+    pub fn nearer_pattern(&self) -> Result<String, JsValue> {
+        Ok(self.job.nearer_pattern(database()?).unwrap_or_default())
+    }
+
+    /// Begins the nearer-render rule's first round in tasks where the ranking needs it (after
+    /// `fitNoise` and the fits that order the list): run with the final fit's task calls
+    /// (`fitPending` ...), then `finishNearer`, then `rank`. Returns its pattern for the
+    /// helpers (empty: none needed; `rank` directly).
+    #[wasm_bindgen(js_name = beginNearer)]
+    pub fn begin_nearer(&mut self) -> Result<String, JsValue> {
+        Ok(self.job.begin_nearer(database()?).unwrap_or_default())
+    }
+
+    /// Whether the tasks begun run on the ranking's photo (the nearer-render rule's first
+    /// round): what a helper's `Refiner.fitPrepare`, `fitTask` and `fitTone` are told.
+    #[wasm_bindgen(js_name = fitOnRankingPhoto)]
+    pub fn fit_on_ranking_photo(&self) -> bool {
+        self.job.fit_on_ranking_photo()
+    }
+
+    /// The noise model's fitted params as JSON once `fitNoise` stored them (empty before): what
+    /// a helper's `Refiner.nearerScatterings` renders.
+    #[wasm_bindgen(js_name = noiseParams)]
+    pub fn noise_params(&self) -> String {
+        self.job.noise_params().unwrap_or_default()
+    }
+
+    /// Stores a helper's `Refiner.nearerScatterings` of `noise` (`noiseParams`).
+    #[wasm_bindgen(js_name = setNearerScatterings)]
+    pub fn set_nearer_scatterings(&mut self, noise: &str, both: &[f64]) -> Result<(), JsValue> {
+        if !both.len().is_multiple_of(2) {
+            return Err(JsValue::from_str(
+                "the scatterings: an odd number of features",
+            ));
+        }
+        let (photo, render) = both.split_at(both.len() / 2);
+        self.job
+            .set_nearer_scatterings(noise, photo, render)
+            .map_err(js_error)
+    }
+
+    /// Hands the nearer-render rule's first round to the ranking, every task stored.
+    #[wasm_bindgen(js_name = finishNearer)]
+    pub fn finish_nearer(&mut self) -> Result<(), JsValue> {
+        self.job.finish_nearer().map_err(js_error)
+    }
+
     /// Begins the final fit of ranked row `i` in tasks (`fitPending`, `fitTask` here or a
     /// helper's `Refiner.fitTask`, `setFitTask`, then `fitReport`: `report(i)`'s JSON); false
     /// for the noise model (no tasks: use `report`).
@@ -497,29 +548,52 @@ impl Refiner {
             .map_err(js_error)
     }
 
-    /// Builds the final fit of `pattern` (`Suggestions.rowPattern`) ahead of its tasks, while
-    /// the analysis worker builds its own.
+    /// Builds the final fit of `pattern` (`Suggestions.rowPattern`, or `beginNearer`'s on the
+    /// ranking's photo where `onRankingPhoto`: `Suggestions.fitOnRankingPhoto`) ahead of its
+    /// tasks, while the analysis worker builds its own.
     #[wasm_bindgen(js_name = fitPrepare)]
-    pub fn fit_prepare(&mut self, pattern: &str) -> Result<(), JsValue> {
+    pub fn fit_prepare(&mut self, pattern: &str, on_ranking_photo: bool) -> Result<(), JsValue> {
         self.inner
-            .fit_prepare(database()?, pattern)
+            .fit_prepare(database()?, pattern, on_ranking_photo)
             .map_err(js_error)
     }
 
     /// Tone render `k` of the final fit's best params (`Suggestions.fitBestParams`), as flat RGB
     /// for `Suggestions.setFitTone` (task `fitScoredTasks() + k`).
     #[wasm_bindgen(js_name = fitTone)]
-    pub fn fit_tone(&self, params: &str, k: u32) -> Result<Vec<f32>, JsValue> {
-        self.inner.fit_tone(params, k).map_err(js_error)
+    pub fn fit_tone(
+        &mut self,
+        params: &str,
+        k: u32,
+        on_ranking_photo: bool,
+    ) -> Result<Vec<f32>, JsValue> {
+        self.inner
+            .fit_tone(params, k, on_ranking_photo)
+            .map_err(js_error)
     }
 
     /// Final-fit task `t` of `pattern` (`Suggestions.rowPattern`) with the first round's
     /// `chosen` amplitude (`Suggestions.fitChosen`), as JSON for `Suggestions.setFitTask`.
     #[wasm_bindgen(js_name = fitTask)]
-    pub fn fit_task(&mut self, pattern: &str, t: usize, chosen: usize) -> Result<String, JsValue> {
+    pub fn fit_task(
+        &mut self,
+        pattern: &str,
+        t: usize,
+        chosen: usize,
+        on_ranking_photo: bool,
+    ) -> Result<String, JsValue> {
         self.inner
-            .fit_task(database()?, pattern, t, chosen)
+            .fit_task(database()?, pattern, t, chosen, on_ranking_photo)
             .map_err(js_error)
+    }
+
+    /// The ranking photo's scatterings for the nearer-render rule: the photo's features, then
+    /// those of the render of `noise` (`Suggestions.noiseParams`), one array (the two halves),
+    /// for `Suggestions.setNearerScatterings`.
+    #[wasm_bindgen(js_name = nearerScatterings)]
+    pub fn nearer_scatterings(&self, noise: &str) -> Result<Vec<f64>, JsValue> {
+        let (photo, render) = self.inner.nearer_scatterings(noise).map_err(js_error)?;
+        Ok(photo.into_iter().chain(render).collect())
     }
 }
 

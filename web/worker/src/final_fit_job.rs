@@ -8,7 +8,7 @@ use proctex::db::Db;
 use proctex::input::Photo;
 use proctex::params::Params;
 use proctex::pattern::Pattern;
-use proctex::structure::{FinalFit, Scored};
+use proctex::structure::{FinalFit, FirstRound, Scored};
 use serde::{Deserialize, Serialize};
 
 /// Step 6 of one pattern on one photo, task by task: tasks `0..A` are the first round (each
@@ -35,15 +35,56 @@ impl FinalFitJob {
     /// tasks.
     pub fn new(db: &Db, photo: &Photo, opts: &Options, pattern: &Pattern, swapped: bool) -> Self {
         let fit = FinalFit::new(db, photo, pattern, opts, swapped);
+        let variants = fit.variants();
+        Self::of(fit, pattern_json(pattern, swapped), variants)
+    }
+
+    /// The first round only, and the tone renders of its best: [`FirstRound::amplitude_fit`]
+    /// in tasks ([`FinalFitJob::into_first_round`] gives both once every task is stored).
+    pub fn first_round(
+        db: &Db,
+        photo: &Photo,
+        opts: &Options,
+        pattern: &Pattern,
+        swapped: bool,
+    ) -> Self {
+        let fit = FinalFit::new(db, photo, pattern, opts, swapped);
+        Self::of(fit, pattern_json(pattern, swapped), 0)
+    }
+
+    /// The rest of the final fit from its first round (run here or elsewhere: the ranking's
+    /// [`FirstRound`] of the same pattern on the same photo): its tasks are the second round's
+    /// and the tone renders', and it finishes as [`FinalFitJob::new`]'s fit does, bit for bit.
+    pub fn from_first_round(round: FirstRound, pattern: &Pattern, swapped: bool) -> Self {
+        let (fit, first) = round.into_parts();
+        let variants = fit.variants();
+        let mut job = Self::of(fit, pattern_json(pattern, swapped), variants);
+        job.first = first.into_iter().map(Some).collect();
+        job
+    }
+
+    fn of(fit: FinalFit, pattern_json: String, variants: usize) -> Self {
         FinalFitJob {
-            pattern_json: pattern_json(pattern, swapped),
+            pattern_json,
             first: vec![None; fit.amplitudes()],
             chosen: None,
-            rest: vec![None; fit.variants()],
+            rest: vec![None; variants],
             best: None,
             tone: Vec::new(),
             fit,
         }
+    }
+
+    /// A [`FinalFitJob::first_round`] once every task is stored: the round and its best
+    /// amplitude with its tone curve ([`FirstRound::amplitude_fit`]); `None` before, or for a
+    /// whole final fit (its tasks past the first round).
+    pub fn into_first_round(self) -> Option<(FirstRound, Analysis)> {
+        if !self.rest.is_empty() {
+            return None;
+        }
+        let analysis = self.finish()?;
+        let first: Option<Vec<Scored>> = self.first.into_iter().collect();
+        Some((FirstRound::from_scored(self.fit, first?)?, analysis))
     }
 
     /// The pattern and tone swap as JSON (for [`FitHelper::run`]).

@@ -229,8 +229,12 @@ pub struct SuggestJob {
     crop: Option<[u32; 4]>,
     suggester: Suggester,
     ranked: Vec<Suggestion>,
-    /// The final fit of a ranked row in tasks ([`SuggestJob::begin_fit`]).
+    /// The final fit of a ranked row in tasks ([`SuggestJob::begin_fit`]), or the nearer-render
+    /// rule's first round ([`SuggestJob::begin_nearer`]).
     final_fit: Option<FinalFitJob>,
+    /// The pattern and tone pairing of the nearer-render rule's first round while `final_fit`
+    /// is that.
+    nearer: Option<(proctex::pattern::Pattern, bool)>,
 }
 
 impl std::fmt::Debug for SuggestJob {
@@ -269,6 +273,7 @@ impl SuggestJob {
             suggester,
             ranked: Vec::new(),
             final_fit: None,
+            nearer: None,
         })
     }
 
@@ -421,8 +426,15 @@ impl SuggestJob {
         let s = self.ranked.get(i).ok_or_else(|| {
             proctex::error::Error::Option(format!("no suggestion {i} (rank the photo first)"))
         })?;
-        self.final_fit = s.pattern.as_ref().map(|(pattern, swapped)| {
-            FinalFitJob::new(db, &self.prepared, &self.opts, pattern, *swapped)
+        self.nearer = None;
+        // The ranking's first round of this family, where it fitted one on this photo (the
+        // nearer-render rule), goes on to the whole fit.
+        let kept = self.suggester.take_nearest_first_round();
+        self.final_fit = s.pattern.as_ref().map(|(pattern, swapped)| match kept {
+            Some(k) if k.pattern == *pattern && k.swapped == *swapped => {
+                FinalFitJob::from_first_round(k.round, pattern, *swapped)
+            }
+            _ => FinalFitJob::new(db, &self.prepared, &self.opts, pattern, *swapped),
         });
         Ok(self.final_fit.is_some())
     }
@@ -551,6 +563,9 @@ fn refined_json(s: &Suggester, db: &Db, i: usize) -> String {
 pub struct Refiner {
     suggester: Suggester,
     fit: FitHelper,
+    /// The same on the ranking's photo, for the nearer-render rule's first round
+    /// ([`SuggestJob::begin_nearer`]).
+    ranking_fit: FitHelper,
 }
 
 impl Refiner {
@@ -578,8 +593,10 @@ impl Refiner {
             seed,
             ..Options::default()
         };
+        let suggester = Suggester::new(db, &photo, &opts, Refinement::default());
         Ok(Refiner {
-            suggester: Suggester::new(db, &photo, &opts, Refinement::default()),
+            ranking_fit: FitHelper::new(suggester.ranking_photo().clone(), opts),
+            suggester,
             fit: FitHelper::new(photo, opts),
         })
     }
@@ -603,29 +620,69 @@ impl Refiner {
         Ok(serde_json::to_string(&self.suggester.fit_refined(db, i)).expect("params serialise"))
     }
 
-    /// Builds the final fit of `pattern_json` ([`SuggestJob::row_pattern`]) ahead of its tasks.
-    pub fn fit_prepare(&mut self, db: &Db, pattern_json: &str) -> Result<(), serde_json::Error> {
-        self.fit.prepare(db, pattern_json).map(|_| ())
+    /// Builds the final fit of `pattern_json` ([`SuggestJob::row_pattern`], or
+    /// [`SuggestJob::begin_nearer`]'s on the ranking's photo where `on_ranking_photo`:
+    /// [`SuggestJob::fit_on_ranking_photo`]) ahead of its tasks.
+    pub fn fit_prepare(
+        &mut self,
+        db: &Db,
+        pattern_json: &str,
+        on_ranking_photo: bool,
+    ) -> Result<(), serde_json::Error> {
+        self.fit_helper(on_ranking_photo)
+            .prepare(db, pattern_json)
+            .map(|_| ())
     }
 
-    /// Final-fit task `t` of the job's pattern ([`SuggestJob::fit_pattern`]) as JSON (for
-    /// [`SuggestJob::set_fit_task`]).
+    /// Final-fit task `t` of the job's pattern ([`SuggestJob::fit_pattern`]; on the ranking's
+    /// photo where `on_ranking_photo`) as JSON (for [`SuggestJob::set_fit_task`]).
     pub fn fit_task(
         &mut self,
         db: &Db,
         pattern_json: &str,
         t: usize,
         chosen: usize,
+        on_ranking_photo: bool,
     ) -> Result<String, String> {
-        self.fit.run(db, pattern_json, t, chosen)
+        self.fit_helper(on_ranking_photo)
+            .run(db, pattern_json, t, chosen)
     }
 
-    /// Tone render `k` of the final fit's best params ([`SuggestJob::fit_best_params`]) as flat
-    /// RGB (for [`SuggestJob::set_fit_tone`], task `fit_scored_tasks + k`).
-    pub fn fit_tone(&self, params_json: &str, k: u32) -> Result<Vec<f32>, serde_json::Error> {
-        self.fit.tone(params_json, k)
+    /// Tone render `k` of the final fit's best params ([`SuggestJob::fit_best_params`]; at the
+    /// ranking photo's size where `on_ranking_photo`) as flat RGB (for
+    /// [`SuggestJob::set_fit_tone`], task `fit_scored_tasks + k`).
+    pub fn fit_tone(
+        &mut self,
+        params_json: &str,
+        k: u32,
+        on_ranking_photo: bool,
+    ) -> Result<Vec<f32>, serde_json::Error> {
+        self.fit_helper(on_ranking_photo).tone(params_json, k)
+    }
+
+    fn fit_helper(&mut self, on_ranking_photo: bool) -> &mut FitHelper {
+        if on_ranking_photo {
+            &mut self.ranking_fit
+        } else {
+            &mut self.fit
+        }
+    }
+
+    /// The scatterings that the nearer-render rule compares the family's render with: the
+    /// ranking photo's and that of the render of `noise_json` ([`SuggestJob::noise_params`]),
+    /// for [`SuggestJob::set_nearer_scatterings`].
+    pub fn nearer_scatterings(
+        &self,
+        noise_json: &str,
+    ) -> Result<(Vec<f64>, Vec<f64>), serde_json::Error> {
+        let noise: Params = serde_json::from_str(noise_json)?;
+        Ok((
+            self.suggester.photo_scattering(),
+            self.suggester.render_scattering(&noise),
+        ))
     }
 }
 
+mod nearer;
 #[cfg(test)]
 mod tests;

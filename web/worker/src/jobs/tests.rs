@@ -252,40 +252,10 @@ fn the_final_fit_in_tasks_anywhere_equals_the_report() {
     let (px, pw, ph) = job.prepared();
     let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
     let pattern = job.row_pattern(i).unwrap();
-    helper.fit_prepare(db, &pattern).unwrap();
+    helper.fit_prepare(db, &pattern, false).unwrap();
     assert!(job.begin_fit(db, i).unwrap());
     assert_eq!(job.fit_pattern().unwrap().0, pattern);
-    let (mut tasks, mut tones) = (0, 0);
-    loop {
-        let round = job.fit_pending();
-        if round.is_empty() {
-            break;
-        }
-        let (pattern, chosen) = job.fit_pattern().unwrap();
-        let pattern = pattern.to_string();
-        let scored = job.fit_scored_tasks();
-        for &t in round.iter().rev() {
-            if t >= scored {
-                let rgb = if t % 2 == 0 {
-                    let params = job.fit_best_params().unwrap();
-                    helper.fit_tone(&params, (t - scored) as u32).unwrap()
-                } else {
-                    job.fit_tone(t).unwrap()
-                };
-                assert!(job.set_fit_tone(t, &rgb));
-                assert!(!job.set_fit_tone(t, &rgb[3..]));
-                tones += 1;
-            } else {
-                let json = if t % 2 == 0 {
-                    helper.fit_task(db, &pattern, t, chosen).unwrap()
-                } else {
-                    job.fit_task(db, t).unwrap()
-                };
-                job.set_fit_task(t, &json).unwrap();
-            }
-            tasks += 1;
-        }
-    }
+    let (tasks, tones) = run_fit_tasks(db, &mut job, &mut helper, false);
     assert!(tasks > 1, "{tasks} tasks");
     assert_eq!(tones, proctex::structure::TONE_SEEDS);
     assert!(job.fit_task(db, job.fit_scored_tasks()).is_none());
@@ -301,7 +271,151 @@ fn the_final_fit_in_tasks_anywhere_equals_the_report() {
     assert!(job.begin_fit(db, i).unwrap());
     assert!(job.fit_report().is_err()); // no task stored yet
     assert!(job.set_fit_task(0, "not json").is_err());
-    assert!(helper.fit_task(db, "not json", 0, 0).is_err());
-    assert!(helper.fit_task(db, &pattern, 99, 0).is_err());
-    assert!(helper.fit_tone("not json", 0).is_err());
+    assert!(helper.fit_task(db, "not json", 0, 0, false).is_err());
+    assert!(helper.fit_task(db, &pattern, 99, 0, false).is_err());
+    assert!(helper.fit_tone("not json", 0, false).is_err());
+}
+
+/// Runs the final fit's tasks begun in `job` (a row's, or the nearer-render rule's first round
+/// on the ranking's photo where `on_ranking_photo`) round by round, each round in reverse order,
+/// alternately in `helper` and in `job`, storing each; returns the tasks run and how many were
+/// tone renders.
+fn run_fit_tasks(
+    db: &Db,
+    job: &mut SuggestJob,
+    helper: &mut Refiner,
+    on_ranking_photo: bool,
+) -> (usize, u32) {
+    assert_eq!(job.fit_on_ranking_photo(), on_ranking_photo);
+    let (mut tasks, mut tones) = (0, 0);
+    loop {
+        let round = job.fit_pending();
+        if round.is_empty() {
+            return (tasks, tones);
+        }
+        let (pattern, chosen) = job.fit_pattern().unwrap();
+        let pattern = pattern.to_string();
+        let scored = job.fit_scored_tasks();
+        for &t in round.iter().rev() {
+            if t >= scored {
+                let rgb = if t % 2 == 0 {
+                    let params = job.fit_best_params().unwrap();
+                    helper
+                        .fit_tone(&params, (t - scored) as u32, on_ranking_photo)
+                        .unwrap()
+                } else {
+                    job.fit_tone(t).unwrap()
+                };
+                assert!(job.set_fit_tone(t, &rgb));
+                assert!(!job.set_fit_tone(t, &rgb[3..]));
+                tones += 1;
+            } else {
+                let json = if t % 2 == 0 {
+                    helper
+                        .fit_task(db, &pattern, t, chosen, on_ranking_photo)
+                        .unwrap()
+                } else {
+                    job.fit_task(db, t).unwrap()
+                };
+                job.set_fit_task(t, &json).unwrap();
+            }
+            tasks += 1;
+        }
+    }
+}
+
+/// A photo's RGBA bytes.
+fn rgba_of(photo: &Photo) -> Vec<u8> {
+    photo
+        .pixels
+        .iter()
+        .flat_map(|c| {
+            c.map(|v| (v * 255.0).round() as u8)
+                .into_iter()
+                .chain([255])
+        })
+        .collect()
+}
+
+/// A job on `photo` refined, with the noise model's fit and those that order the list stored.
+fn ordered_job(db: &Db, photo: &Photo) -> SuggestJob {
+    let mut job = SuggestJob::new(db, &rgba_of(photo), photo.width, photo.height, None, 1).unwrap();
+    while job.step(db) {}
+    for i in job.order_fits() {
+        let json = job.order_fit(db, i);
+        job.set_order_fit(i, &json).unwrap();
+    }
+    job.fit_noise(db);
+    job
+}
+
+/// The nearer-render rule's first round run in tasks before the ranking (shared with a helper,
+/// which also scatters the photo and the noise model's render) ranks exactly as the ranking
+/// that fits it itself, its margin included; where its family comes first, that row's final fit
+/// goes on from the round (no first-round task again) to the same report, bit for bit. On a
+/// photo larger than the ranking's (the gravel sample, 512²) the round runs on the ranking's
+/// photo; where the noise model does not lead (the brick sample) nothing runs.
+#[test]
+fn the_nearer_render_fit_in_tasks_ranks_and_adopts_the_same() {
+    let db = Db::shipped();
+    let dev = |name: &str| {
+        let path = format!(
+            "{}/../../../shared/photos/dev/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let p = Photo::decode(&std::fs::read(&path).unwrap()).unwrap();
+        let (w, h) = (p.width / 2, p.height / 2);
+        p.crop(Crop { x: 0, y: 0, w, h }).unwrap()
+    };
+    let shipped = |name: &str| {
+        let path = format!("{}/../../www/samples/{name}", env!("CARGO_MANIFEST_DIR"));
+        Photo::decode(&std::fs::read(path).unwrap()).unwrap()
+    };
+    for (photo, first) in [
+        (dev("openarena_pebbles_256.png"), "cells"),
+        (shipped("skimage_gravel_512.png"), "noise"),
+    ] {
+        let mut whole = ordered_job(db, &photo);
+        let rows = whole.rank(db);
+        assert_eq!(rows[0].name, first);
+        let mut job = ordered_job(db, &photo);
+        let (px, pw, ph) = job.prepared();
+        let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+        assert!(job.finish_nearer().is_err());
+        let named = job.nearer_pattern(db);
+        let pattern = job
+            .begin_nearer(db)
+            .expect("the noise model leads by score");
+        assert_eq!(named.as_ref(), Some(&pattern));
+        helper.fit_prepare(db, &pattern, true).unwrap();
+        assert!(job.finish_nearer().is_err()); // no task stored yet
+        let (tasks, tones) = run_fit_tasks(db, &mut job, &mut helper, true);
+        assert!(tasks > 1, "{tasks} tasks");
+        assert_eq!(tones, proctex::structure::TONE_SEEDS);
+        let noise = job.noise_params().unwrap();
+        let (photo_s, noise_s) = helper.nearer_scatterings(&noise).unwrap();
+        job.set_nearer_scatterings(&noise, &photo_s, &noise_s)
+            .unwrap();
+        job.finish_nearer().unwrap();
+        assert!(!job.fit_on_ranking_photo());
+        assert!(job.begin_nearer(db).is_none(), "the round is stored");
+        assert_eq!(job.rank(db), rows);
+        let margin = |j: &SuggestJob| j.ranked.iter().find_map(|s| s.nearer_render_margin);
+        assert!(margin(&job).is_some());
+        assert_eq!(margin(&job), margin(&whole));
+        if first != "noise" {
+            let report = serde_json::to_string(&whole.report(db, 0).unwrap()).unwrap();
+            assert!(job.begin_fit(db, 0).unwrap());
+            assert!(!job.fit_pending().contains(&0), "the first round goes on");
+            run_fit_tasks(db, &mut job, &mut helper, false);
+            let tasked = serde_json::to_string(&job.fit_report().unwrap()).unwrap();
+            assert_eq!(tasked, report);
+        }
+    }
+    let mut brick = ordered_job(db, &shipped("skimage_brick_512.png"));
+    assert!(brick.nearer_pattern(db).is_none());
+    assert!(brick.begin_nearer(db).is_none());
+    let (px, pw, ph) = brick.prepared();
+    let helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+    assert!(helper.nearer_scatterings("not json").is_err());
 }
