@@ -687,9 +687,22 @@ impl Suggester {
     /// The first round of the nearest family's final fit that [`NEARER_RENDER_MARGIN`] made,
     /// where the ranking works on the photo unreduced (its pattern then in the photo's pixels):
     /// where that family is chosen, its final fit goes on from there. `None` otherwise.
-    pub fn take_nearest_first_round(&self) -> Option<NearestFirstRound> {
+    pub(super) fn take_nearest_first_round(&self) -> Option<NearestFirstRound> {
         let mut kept = self.nearest_first_round.lock().expect("not poisoned");
         if self.unreduced { kept.take() } else { None }
+    }
+
+    /// [`Suggester::take_nearest_first_round`] where its pattern (in the photo's pixels) is
+    /// `pattern` with `swapped`: the start of that pattern's final fit; otherwise it stays kept.
+    pub fn take_nearest_first_round_of(
+        &self,
+        pattern: &Pattern,
+        swapped: bool,
+    ) -> Option<FirstRound> {
+        let mut kept = self.nearest_first_round.lock().expect("not poisoned");
+        let fits =
+            matches!(kept.as_ref(), Some(k) if k.pattern == *pattern && k.swapped == swapped);
+        (self.unreduced && fits).then(|| kept.take().expect("kept").round)
     }
 
     /// The noise model fitted on the reduced photo: its texture distance and the classifier's

@@ -429,12 +429,14 @@ impl SuggestJob {
         self.nearer = None;
         // The ranking's first round of this family, where it fitted one on this photo (the
         // nearer-render rule), goes on to the whole fit.
-        let kept = self.suggester.take_nearest_first_round();
-        self.final_fit = s.pattern.as_ref().map(|(pattern, swapped)| match kept {
-            Some(k) if k.pattern == *pattern && k.swapped == *swapped => {
-                FinalFitJob::from_first_round(k.round, pattern, *swapped)
+        self.final_fit = s.pattern.as_ref().map(|(pattern, swapped)| {
+            match self
+                .suggester
+                .take_nearest_first_round_of(pattern, *swapped)
+            {
+                Some(round) => FinalFitJob::from_first_round(round, pattern, *swapped),
+                None => FinalFitJob::new(db, &self.prepared, &self.opts, pattern, *swapped),
             }
-            _ => FinalFitJob::new(db, &self.prepared, &self.opts, pattern, *swapped),
         });
         Ok(self.final_fit.is_some())
     }

@@ -405,6 +405,12 @@ fn the_nearer_render_fit_in_tasks_ranks_and_adopts_the_same() {
         assert_eq!(margin(&job), margin(&whole));
         if first != "noise" {
             let report = serde_json::to_string(&whole.report(db, 0).unwrap()).unwrap();
+            // Another row begun first leaves the round kept for this one.
+            let other = rows
+                .iter()
+                .position(|r| r.name != first && r.name != "noise");
+            assert!(job.begin_fit(db, other.unwrap()).unwrap());
+            assert!(job.fit_pending().contains(&0));
             assert!(job.begin_fit(db, 0).unwrap());
             assert!(!job.fit_pending().contains(&0), "the first round goes on");
             run_fit_tasks(db, &mut job, &mut helper, false);
