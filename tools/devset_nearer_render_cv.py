@@ -18,7 +18,16 @@ RUN at TAU reproduces. With `--margins TSV COLUMN`, the margins are read from co
 (0-based) of a TSV whose first two columns are the photo and the patch
 (`examples/nearer_render_lab.rs`: 4 the fast fit's, 5 the final fit's) instead of the run's.
 
-Usage: tools/devset_nearer_render_cv.py RUN.jsonl [--check TAU WITH.jsonl | --margins TSV COLUMN]
+With `--ratio`, the rule's statistic is the log ratio of the two distances whose difference the
+margin is, ln(|S(photo) − S(noise render)| / |S(photo) − S(family render)|) (scale-free: a photo
+far from both renders needs a proportionally larger gap), from the run's
+`nearer_render_distances`.
+
+Usage: tools/devset_nearer_render_cv.py RUN.jsonl [--check TAU WITH.jsonl | --margins TSV COLUMN |
+--ratio] [--at TAU]
+
+With `--at TAU`, only the replay at TAU against the run without the rule (a set the threshold is
+not chosen on: the shipped samples, textures never tuned on), with what it switches.
 """
 import json
 import math
@@ -29,7 +38,7 @@ from devset_occam_cv import fold_of, patch_overall
 FOLDS = 4
 
 
-def rows_of(run, margins=None):
+def rows_of(run, margins=None, ratio=False):
     """(photo, labels, choice) for every patch of the run, the choice with `before` (the model
     the ranking put first before the rule: the noise model wherever the run recorded a margin,
     since the ranking measures it only there), `served` (that model is the noise model, or a
@@ -45,6 +54,9 @@ def rows_of(run, margins=None):
             before = "noise" if recorded is not None else c["chosen"]
             if margins is not None:
                 margin = margins[(p["entry"]["file"], c["patch"])]
+            elif ratio:
+                d = c.get("nearer_render_distances")
+                margin = -math.inf if d is None else math.log(d[0] / max(d[1], 1e-12))
             else:
                 margin = -math.inf if recorded is None else recorded
             served = before == "noise" or (
@@ -106,7 +118,19 @@ def main():
         for line in open(args[2]):
             t = line.rstrip("\n").split("\t")
             margins[(t[0], t[1])] = float(t[column])
-    rows = rows_of(args[0], margins)
+    rows = rows_of(args[0], margins, ratio="--ratio" in args)
+    if "--at" in args:
+        tau = float(args[args.index("--at") + 1])
+        structured = sum(labels != ["noise"] for _, labels, _ in rows)
+        print(f"{structured} structured and {len(rows) - structured} stochastic patches")
+        print("without the rule: labelled %d, served %d" % tally(rows, math.inf))
+        print("at %.4f: labelled %d, served %d" % ((tau,) + tally(rows, tau)))
+        for p, labels, c in rows:
+            if chosen_at(c, tau) != c["before"]:
+                mark = "noise" if labels == ["noise"] else (
+                    "labelled" if c["nearest"] in labels else "wrong")
+                print(f"  switched: {p} {c['patch']} -> {c['nearest']} ({mark}; {c['margin']:.3f})")
+        return
     grid = thresholds(rows)
     structured = sum(labels != ["noise"] for _, labels, _ in rows)
     stochastic = len(rows) - structured

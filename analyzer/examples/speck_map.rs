@@ -31,6 +31,16 @@ fn main() {
                     p.pixels[i].map(q),
                     med.map(q)
                 );
+                // With `SPECK_DUMP=2` the red channel of the 5×5 neighbourhood too.
+                if std::env::var("SPECK_DUMP").as_deref() == Ok("2") {
+                    let h = p.height as usize;
+                    for yy in y.saturating_sub(2)..(y + 3).min(h) {
+                        let row: Vec<i32> = (x.saturating_sub(2)..(x + 3).min(w))
+                            .map(|xx| q(p.pixels[yy * w + xx][0]))
+                            .collect();
+                        println!("      {row:?}");
+                    }
+                }
             }
         }
         if let Some(dir) = &map {

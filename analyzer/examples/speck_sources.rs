@@ -100,6 +100,21 @@ fn main() {
             }
         }
         img.save(out).unwrap();
+        // With `SPECK_RENDERS=DIR` the two renders at their own size too (`speck_map` reads them).
+        if let Some(dir) = std::env::var_os("SPECK_RENDERS") {
+            let dir = std::path::PathBuf::from(dir);
+            for (name, im) in [("model.png", &b), ("ramp.png", &a)] {
+                let mut one = image::RgbImage::new(w, h);
+                for (i, c) in im.pixels.iter().enumerate() {
+                    one.put_pixel(
+                        i as u32 % w,
+                        i as u32 / w,
+                        image::Rgb(c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)),
+                    );
+                }
+                one.save(dir.join(name)).unwrap();
+            }
+        }
     }
     if let Model::Structured(m) = &full.model {
         println!(

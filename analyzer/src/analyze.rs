@@ -160,9 +160,15 @@ pub fn analyze_photo_with(
 
 /// The analysis proper, on an image already at analysis size (at least 32×32).
 pub fn analyze_prepared(photo: &Photo, opts: &Options) -> Analysis {
+    analyze_prepared_in(photo, opts, pca(&photo.pixels))
+}
+
+/// [`analyze_prepared`] with the colour statistics `p` of the photo's pixels given (its basis
+/// the channels the noise is analysed in; a structured model's residual is analysed in a basis
+/// whose first axis is the photo's tone line: [`crate::colour::pca_with_first_axis`]).
+pub fn analyze_prepared_in(photo: &Photo, opts: &Options, p: crate::colour::Pca) -> Analysis {
     let (w, h) = (photo.width as usize, photo.height as usize);
     let n = w * h;
-    let p = pca(&photo.pixels);
     let mean = p.mean.map(|m| m as f32);
     let basis = p.basis.map(|r| r.map(|v| v as f32));
 

@@ -85,6 +85,59 @@ pub fn pca(pixels: &[[f32; 3]]) -> Pca {
     }
 }
 
+/// The colour statistics of `pixels` in a basis whose first axis is `first` (normalised, sign
+/// fixed) and whose other two are the principal axes of the pixels' spread orthogonal to it,
+/// the larger first; a rotation (det +1). `variance` holds each axis's variance, which need not
+/// decrease, and the channels are decorrelated only within the orthogonal plane.
+///
+/// Why (ours): a structured model's residual is drawn as three independent channels, and step 4
+/// of its fit gives the channel along the photo's tone line the power that the pattern's
+/// structure lacks ([`crate::structure`]). In the residual's own principal axes that power
+/// went into axes that mix luminance with colour (on a grey-blue rubble wall the first two
+/// were 0.42 and 0.90 along the tone line), and drawing it independently per axis made
+/// saturated blue and yellow blotches that the photo does not have (its blue-minus-yellow
+/// deviation 5.7 of 255, the cells render's 27). With the tone line as an axis, the missing
+/// structure is drawn along it and the colour axes keep the colour the photo has.
+pub fn pca_with_first_axis(pixels: &[[f32; 3]], first: [f64; 3]) -> Pca {
+    let (mean, cov) = mean_covariance(pixels);
+    let variance_along = |b: [f64; 3]| {
+        let cb = [0, 1, 2].map(|i| dot(cov[i], b));
+        dot(b, cb).max(0.0)
+    };
+    let mut a = if dot(first, first) > 1e-18 {
+        normalize(first)
+    } else {
+        normalize([1.0, 1.0, 1.0])
+    };
+    fix_sign(&mut a);
+    // The 2×2 covariance in the plane orthogonal to `a`, in a fixed orthonormal pair (u, v).
+    let u = canonical_orthogonal(a);
+    let v = cross(a, u);
+    let cu = [0, 1, 2].map(|i| dot(cov[i], u));
+    let (suu, svv, suv) = (dot(u, cu), variance_along(v), dot(v, cu));
+    // Its major axis at angle θ from u: tan 2θ = 2 s_uv / (s_uu − s_vv); where the spread is
+    // (nearly) round, u itself.
+    let theta = if suv.abs() <= 1e-14 * (suu + svv).abs().max(1e-30) {
+        if svv > suu {
+            std::f64::consts::FRAC_PI_2
+        } else {
+            0.0
+        }
+    } else {
+        0.5 * (2.0 * suv).atan2(suu - svv)
+    };
+    let (c, sn) = (theta.cos(), theta.sin());
+    let mut b = [0, 1, 2].map(|k| c * u[k] + sn * v[k]);
+    fix_sign(&mut b);
+    let basis = [a, b, cross(a, b)];
+    Pca {
+        mean,
+        basis,
+        variance: basis.map(variance_along),
+        covariance: cov,
+    }
+}
+
 /// Sign convention: the component of largest magnitude is positive (first one on ties).
 fn fix_sign(v: &mut [f64; 3]) {
     let mut k = 0;
@@ -394,6 +447,54 @@ mod tests {
         }
     }
 
+    /// `pixels` in the channels of `p` (their offsets from its mean along its axes).
+    fn projected(pixels: &[[f32; 3]], p: &Pca) -> Vec<[f64; 3]> {
+        pixels
+            .iter()
+            .map(|px| {
+                let d = [0, 1, 2].map(|c| px[c] as f64 - p.mean[c]);
+                p.basis.map(|axis| dot(axis, d))
+            })
+            .collect()
+    }
+
+    /// With the first axis given, the basis is a rotation that starts with it, its second axis
+    /// is the spread's major axis across it, and the two axes across it are uncorrelated.
+    #[test]
+    fn a_given_first_axis_leads_a_rotation_whose_other_axes_decorrelate() {
+        let pixels: Vec<[f32; 3]> = (0..5000)
+            .map(|i| {
+                let a = ((i * 7919) % 1000) as f32 / 1000.0;
+                let b = ((i * 104_729) % 997) as f32 / 997.0;
+                let c = ((i * 1_299_709) % 991) as f32 / 991.0;
+                [
+                    0.4 + 0.3 * a + 0.2 * b,
+                    0.4 + 0.3 * a - 0.2 * b,
+                    0.4 + 0.3 * a + 0.05 * c,
+                ]
+            })
+            .collect();
+        let grey = normalize([1.0, 1.0, 1.0]);
+        let p = pca_with_first_axis(&pixels, [-2.0, -2.0, -2.0]);
+        check_rotation(p.basis);
+        for k in 0..3 {
+            assert!((p.basis[0][k] - grey[k]).abs() < 1e-12, "{:?}", p.basis);
+        }
+        // The red-minus-green spread (0.2 b) is the larger one across grey.
+        let rg = normalize([1.0, -1.0, 0.0]);
+        assert!(dot(p.basis[1], rg).abs() > 0.95, "{:?}", p.basis);
+        let proj = projected(&pixels, &p);
+        let n = proj.len() as f64;
+        let (s12, s11, s22) = proj.iter().fold((0.0, 0.0, 0.0), |(a, b, c), v| {
+            (a + v[1] * v[2], b + v[1] * v[1], c + v[2] * v[2])
+        });
+        assert!((s12 / (s11 * s22).sqrt()).abs() < 1e-6);
+        for k in 0..3 {
+            let var = proj.iter().map(|v| v[k] * v[k]).sum::<f64>() / n;
+            assert!((var - p.variance[k]).abs() < 1e-9 * (1.0 + var), "{k}");
+        }
+    }
+
     #[test]
     fn colour_photo_gives_rotation_and_decorrelates() {
         let pixels: Vec<[f32; 3]> = (0..5000)
@@ -407,13 +508,7 @@ mod tests {
         check_rotation(p.basis);
         assert!(p.variance[0] >= p.variance[1] && p.variance[1] >= p.variance[2]);
         // Projected channels are uncorrelated.
-        let proj: Vec<[f64; 3]> = pixels
-            .iter()
-            .map(|px| {
-                let d = [0, 1, 2].map(|c| px[c] as f64 - p.mean[c]);
-                p.basis.map(|axis| dot(axis, d))
-            })
-            .collect();
+        let proj = projected(&pixels, &p);
         for i in 0..3 {
             for j in (i + 1)..3 {
                 let (mut sij, mut sii, mut sjj) = (0.0, 0.0, 0.0);

@@ -111,6 +111,19 @@ fn detrended(map: &[f32]) -> Vec<f32> {
     )
 }
 
+/// The first period vector of `photo`'s lattice, in pixels of the photo's centre square, and its
+/// autocorrelation there (the `lattice` cue): the shortest offset among the detrended map's
+/// autocorrelation maxima within 10 % of the highest outside the central lobe; `None` where
+/// there is no such maximum.
+pub fn lattice_period(photo: &Photo) -> Option<((f32, f32), f32)> {
+    let acf = autocorrelation(&detrended(&luminance_map(photo)));
+    let (lobe, _) = central_lobe(&acf);
+    let (height, (x, y)) = first_period(&acf, &lobe)?;
+    // The map is the centre square (the shorter side) resampled to SIZE².
+    let per_px = photo.width.min(photo.height) as f32 / SIZE as f32;
+    Some(((x as f32 * per_px, y as f32 * per_px), height))
+}
+
 /// The `skewness` cue of [`cues`] alone (the same value, at a fraction of the cost): negative
 /// where thin dark features (joints, cracks, gaps between stones) stand out of a lighter
 /// surface.
@@ -218,9 +231,9 @@ fn central_lobe(acf: &[f32]) -> (Vec<bool>, f32) {
     (lobe, elongation as f32)
 }
 
-/// The highest local maximum of the autocorrelation outside the central lobe, and the highest
-/// one whose offset is at least 30° away from the first's direction (0 where none).
-fn lattice_peaks(acf: &[f32], lobe: &[bool]) -> (f32, f32) {
+/// The autocorrelation's local maxima outside the central lobe with a positive value, highest
+/// first, with their offsets.
+fn acf_peaks(acf: &[f32], lobe: &[bool]) -> Vec<(f32, (i32, i32))> {
     let n = SIZE;
     let mut peaks: Vec<(f32, (i32, i32))> = Vec::new();
     for j in 0..n * n {
@@ -239,18 +252,34 @@ fn lattice_peaks(acf: &[f32], lobe: &[bool]) -> (f32, f32) {
         }
     }
     peaks.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let Some(&(top, _)) = peaks.first() else {
-        return (0.0, 0.0);
-    };
-    // The first period: the shortest offset among the peaks within 10 % of the highest (on
-    // stripes every point of a ridge is as high as any other; the period is the shortest).
+    peaks
+}
+
+/// The first period: the shortest offset among the peaks within 10 % of the highest (on
+/// stripes every point of a ridge is as high as any other; the period is the shortest), with
+/// its value.
+fn first_period(acf: &[f32], lobe: &[bool]) -> Option<(f32, (i32, i32))> {
+    first_of(&acf_peaks(acf, lobe))
+}
+
+fn first_of(peaks: &[(f32, (i32, i32))]) -> Option<(f32, (i32, i32))> {
+    let &(top, _) = peaks.first()?;
     let length2 = |(x, y): (i32, i32)| x * x + y * y;
-    let (first, (ax, ay)) = peaks
+    peaks
         .iter()
         .filter(|p| p.0 >= 0.9 * top)
         .copied()
         .min_by_key(|p| length2(p.1))
-        .unwrap_or(peaks[0]);
+}
+
+/// The highest local maximum of the autocorrelation outside the central lobe, and the highest
+/// one whose offset is at least 30° away from the first's direction (0 where none).
+fn lattice_peaks(acf: &[f32], lobe: &[bool]) -> (f32, f32) {
+    let n = SIZE;
+    let peaks = acf_peaks(acf, lobe);
+    let Some((first, (ax, ay))) = first_of(&peaks) else {
+        return (0.0, 0.0);
+    };
     let norm_a = ((ax * ax + ay * ay) as f32).sqrt();
     // Stripes have no second period, but their autocorrelation is a ridge through every
     // multiple of the first: any point of it is a peak at any angle. So a second peak counts

@@ -161,6 +161,10 @@ pub struct PatchChoice {
     /// elsewhere (JSON `null`). What choosing [`crate::retrieve::NEARER_RENDER_MARGIN`] again
     /// needs (`tools/devset_nearer_render_cv.py`).
     pub nearer_render_margin: f64,
+    /// Where `nearer_render_margin` is recorded, the patch's two scattering distances whose
+    /// difference it is: to the noise model's render and to the family's
+    /// ([`crate::retrieve::Suggestion::nearer_render_distances`]).
+    pub nearer_render_distances: Option<(f64, f64)>,
 }
 
 /// [`crate::noise_tone::numbers`] of the noise model in a ranking (0 if it has none).
@@ -265,6 +269,8 @@ impl PhotoResult {
                     .iter()
                     .find_map(|c| c.nearer_render_margin)
                     .unwrap_or(f64::NEG_INFINITY);
+                let nearer_render_distances =
+                    run.ranking.iter().find_map(|c| c.nearer_render_distances);
                 choices[run.patch] = Some(PatchChoice {
                     patch: PATCHES[run.patch],
                     chosen: names.first().cloned().unwrap_or_else(|| "noise".into()),
@@ -303,6 +309,7 @@ impl PhotoResult {
                     classifier_distances: classes.iter().map(|c| c.1).collect(),
                     noise_render_margin,
                     nearer_render_margin,
+                    nearer_render_distances,
                     render_specks: speck_fraction(run.synthesis),
                     pixels: run.source.pixels.len(),
                 });
@@ -716,6 +723,7 @@ mod tests {
                     classifier_distances: vec![1.0],
                     noise_render_margin: 0.0,
                     nearer_render_margin: 0.0,
+                    nearer_render_distances: None,
                 })
                 .collect(),
             auto: fidelity(halves, if auto.is_finite() { auto } else { 1e9 }),

@@ -126,6 +126,10 @@ pub struct Suggestion {
     /// noise model's render in the scattering space ([`nearer_render_margin`],
     /// [`NEARER_RENDER_MARGIN`]); `None` elsewhere.
     pub nearer_render_margin: Option<f64>,
+    /// Where `nearer_render_margin` is measured: the photo's two scattering distances whose
+    /// difference it is, to the noise model's render and to the family's (what another form of
+    /// the rule would need; the yardstick records them).
+    pub nearer_render_distances: Option<(f64, f64)>,
 }
 
 /// How much refinement [`suggest_with`] does.

@@ -273,8 +273,17 @@ fn photo_and_noise_scattering(small: &Photo, noise: &Params, tile: &Tile) -> (Ve
 
 /// [`nearer_render_margin`] from the three scatterings.
 fn margin_of_scatterings(photo: &[f64], noise: &[f64], family: &[f64]) -> f64 {
+    let (to_noise, to_family) = distances_of_scatterings(photo, noise, family);
+    to_noise - to_family
+}
+
+/// The photo's scattering distances to the noise model's render and to the family's.
+fn distances_of_scatterings(photo: &[f64], noise: &[f64], family: &[f64]) -> (f64, f64) {
     use crate::scattering::standardised_distance;
-    standardised_distance(photo, noise) - standardised_distance(photo, family)
+    (
+        standardised_distance(photo, noise),
+        standardised_distance(photo, family),
+    )
 }
 
 /// [`texture_distance`] of a rendered candidate `img`.
@@ -367,7 +376,10 @@ impl Suggester {
                 // nearer to the photo ([`NEARER_RENDER_MARGIN`]); measured only then (the first
                 // round of the family's final fit, two renders and three scatterings).
                 if by_score && !unexplained {
-                    noise.nearer_render_margin = self.nearer_family_render(db, &noise, &tile);
+                    let distances = self.nearer_family_render(db, &noise, &tile);
+                    noise.nearer_render_margin =
+                        distances.map(|(to_noise, to_family)| to_noise - to_family);
+                    noise.nearer_render_distances = distances;
                 }
                 let nearer_family = noise
                     .nearer_render_margin
@@ -415,6 +427,7 @@ impl Suggester {
             preview: Some(noise),
             render_classes: noise_classes,
             nearer_render_margin: None,
+            nearer_render_distances: None,
         };
         let complete = self.pending().is_empty();
         let order = &self.order;
@@ -442,6 +455,7 @@ impl Suggester {
                     preview: None,
                     render_classes: None,
                     nearer_render_margin: None,
+                    nearer_render_distances: None,
                 }
             })
             .collect();
@@ -555,14 +569,15 @@ impl Suggester {
         }
     }
 
-    /// [`nearer_render_margin`] of the fitted noise model against the first round of the final
-    /// fit ([`FirstRound`]) of the classifier's nearest family (the first of `order`); `None`
-    /// where the classifier knows none of the families. The round is kept
+    /// The photo's scattering distances to the render of the fitted noise model and to that of
+    /// the first round of the final fit ([`FirstRound`]) of the classifier's nearest family (the
+    /// first of `order`), whose difference is [`nearer_render_margin`]; `None` where the
+    /// classifier knows none of the families. The round is kept
     /// ([`Suggester::take_nearest_first_round`]): where the family comes first, choosing it
     /// finishes that fit. What was stored from elsewhere (the round, the photo's and the noise
     /// render's scatterings: [`Suggester::set_nearest_first_round`],
     /// [`Suggester::set_nearer_scatterings`]) is used as it is.
-    fn nearer_family_render(&self, db: &Db, noise: &Suggestion, tile: &Tile) -> Option<f64> {
+    fn nearer_family_render(&self, db: &Db, noise: &Suggestion, tile: &Tile) -> Option<(f64, f64)> {
         let (p, swapped) = self.nearest_pattern()?;
         let noise = noise.preview.as_ref().expect("the noise model is fitted");
         let mut kept = self.nearest_first_round.lock().expect("not poisoned");
@@ -594,7 +609,7 @@ impl Suggester {
         }
         let params = &kept.as_ref().expect("fitted or kept").params;
         let family = render_scattering(&self.small, params, tile);
-        Some(margin_of_scatterings(&photo, &noise, &family))
+        Some(distances_of_scatterings(&photo, &noise, &family))
     }
 
     /// The classifier's nearest family's refined pattern (in the reduced photo's pixels) and

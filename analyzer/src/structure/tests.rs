@@ -154,7 +154,7 @@ fn fit_tone_recovers_a_known_curve() {
         }
     }
     // A noise model gets none.
-    let noise = analyze_prepared(&photo, &Options::default()).params;
+    let noise = crate::analyze::analyze_prepared(&photo, &Options::default()).params;
     assert!(fit_tone(&photo, &noise).is_none());
 }
 
