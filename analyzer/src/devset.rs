@@ -267,7 +267,7 @@ impl PhotoResult {
                 let nearer_render_margin = run
                     .ranking
                     .iter()
-                    .find_map(|c| c.nearer_render_margin)
+                    .find_map(|c| c.nearer_render_margin())
                     .unwrap_or(f64::NEG_INFINITY);
                 let nearer_render_distances =
                     run.ranking.iter().find_map(|c| c.nearer_render_distances);

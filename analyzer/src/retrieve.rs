@@ -121,15 +121,21 @@ pub struct Suggestion {
     /// ([`classify`]; [`RENDER_NULL_MARGIN`]); `None` for a family not fitted yet or not
     /// render-ordered ([`Fit`]).
     pub render_classes: Option<Vec<(Class, f64)>>,
-    /// For the noise model where the ranking's other rules put it first: how much nearer the
-    /// photo is to the first round of the classifier's nearest family's final fit than to the
-    /// noise model's render in the scattering space ([`nearer_render_margin`],
-    /// [`NEARER_RENDER_MARGIN`]); `None` elsewhere.
-    pub nearer_render_margin: Option<f64>,
-    /// Where `nearer_render_margin` is measured: the photo's two scattering distances whose
-    /// difference it is, to the noise model's render and to the family's (what another form of
-    /// the rule would need; the yardstick records them).
+    /// For the noise model where the ranking's other rules put it first: the photo's scattering
+    /// distances to the noise model's render and to the render of the first round of the
+    /// classifier's nearest family's final fit ([`Suggestion::nearer_render_margin`]); `None`
+    /// elsewhere.
     pub nearer_render_distances: Option<(f64, f64)>,
+}
+
+impl Suggestion {
+    /// How much nearer the photo is to the nearest family's render than to the noise model's in
+    /// the scattering space, where measured ([`nearer_render_margin`],
+    /// [`NEARER_RENDER_MARGIN`]; `nearer_render_distances`).
+    pub fn nearer_render_margin(&self) -> Option<f64> {
+        self.nearer_render_distances
+            .map(|(to_noise, to_family)| to_noise - to_family)
+    }
 }
 
 /// How much refinement [`suggest_with`] does.

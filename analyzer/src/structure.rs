@@ -508,41 +508,35 @@ fn compensate_spectrum(
     opts: &Options,
     weights: &mut [Vec<f32>; 3],
 ) -> [f64; 3] {
+    // Only the first channel, the tone line's: the structure the pattern lacks is a
+    // variation along it; the colour channels keep the residual's own spectra.
     let mut gains = [1.0f64; 3];
     let (w, h) = (photo.width as usize, photo.height as usize);
     let nb = crate::spectrum::num_bands(w, h);
-    let power = |c: usize, px: &mut dyn Iterator<Item = [f32; 3]>| {
-        channel_powers(colour, c, px, w, h, opts)
-    };
-    // Only the first channel, the tone line's: the structure the pattern lacks is a
-    // variation along it; the colour channels keep the residual's own spectra.
-    for (c, wc) in weights.iter_mut().enumerate().take(1) {
-        if wc.len() != nb {
-            continue;
+    let wc = &mut weights[0];
+    if wc.len() != nb {
+        return gains;
+    }
+    let power = |px: &mut dyn Iterator<Item = [f32; 3]>| channel_powers(colour, 0, px, w, h, opts);
+    let p_photo = power(&mut photo.pixels.iter().copied());
+    let p_ramp = power(&mut s_img.iter().map(|&sv| {
+        let r = ramp_rows(rows, sv);
+        [r[0], r[1], r[2]]
+    }));
+    let p_res = power(&mut residual.pixels.iter().copied());
+    let before: f64 = wc.iter().map(|&v| (v as f64).powi(2)).sum();
+    for k in 0..nb {
+        let target = (p_photo[k] - p_ramp[k]).max(p_photo[k] / 20.0);
+        if p_res[k] > 1e-12 {
+            wc[k] = (wc[k] as f64 * (target / p_res[k]).sqrt()) as f32;
         }
-        let p_photo = power(c, &mut photo.pixels.iter().copied());
-        let p_ramp = power(
-            c,
-            &mut s_img.iter().map(|&sv| {
-                let r = ramp_rows(rows, sv);
-                [r[0], r[1], r[2]]
-            }),
-        );
-        let p_res = power(c, &mut residual.pixels.iter().copied());
-        let before: f64 = wc.iter().map(|&v| (v as f64).powi(2)).sum();
-        for k in 0..nb {
-            let target = (p_photo[k] - p_ramp[k]).max(p_photo[k] / 20.0);
-            if p_res[k] > 1e-12 {
-                wc[k] = (wc[k] as f64 * (target / p_res[k]).sqrt()) as f32;
-            }
-        }
-        let after: f64 = wc.iter().map(|&v| (v as f64).powi(2)).sum();
-        if after > 1e-20 {
-            let g = (before / after).sqrt();
-            gains[c] = 1.0 / g;
-            for v in wc.iter_mut() {
-                *v = (*v as f64 * g) as f32;
-            }
+    }
+    let after: f64 = wc.iter().map(|&v| (v as f64).powi(2)).sum();
+    if after > 1e-20 {
+        let g = (before / after).sqrt();
+        gains[0] = 1.0 / g;
+        for v in wc.iter_mut() {
+            *v = (*v as f64 * g) as f32;
         }
     }
     gains

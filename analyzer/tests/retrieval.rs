@@ -264,7 +264,7 @@ fn a_family_whose_final_render_is_nearer_than_the_noise_models_ranks_first() {
     assert_eq!(names[RENDER_ORDERED], "noise", "{names:?}");
     let noise = &ranked[RENDER_ORDERED];
     let recorded = noise
-        .nearer_render_margin
+        .nearer_render_margin()
         .expect("measured where noise led");
     assert!(recorded > NEARER_RENDER_MARGIN, "{recorded}");
     let (pattern, swapped) = ranked[0].pattern.as_ref().expect("a family");
@@ -292,14 +292,14 @@ fn a_family_whose_final_render_is_nearer_than_the_noise_models_ranks_first() {
     assert!(
         ranked[..RENDER_ORDERED]
             .iter()
-            .all(|s| s.nearer_render_margin.is_none())
+            .all(|s| s.nearer_render_margin().is_none())
     );
 
     let gravel = common::dev_quadrant("scorched3d_gravel_256.png");
     let ranked = rank_with(db, &gravel, &opts, Refinement::default(), 1, &|_, _| true);
     assert_eq!(ranked[0].name, "noise");
     let margin = ranked[0]
-        .nearer_render_margin
+        .nearer_render_margin()
         .expect("measured where noise led");
     assert!(margin <= NEARER_RENDER_MARGIN, "{margin}");
 }

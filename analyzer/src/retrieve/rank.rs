@@ -254,7 +254,9 @@ pub(super) struct NearerScatterings {
 /// ([`crate::scattering::standardised_distance`]); what [`NEARER_RENDER_MARGIN`] compares.
 pub fn nearer_render_margin(small: &Photo, noise: &Params, family: &Params, tile: &Tile) -> f64 {
     let (photo, noise) = photo_and_noise_scattering(small, noise, tile);
-    margin_of_scatterings(&photo, &noise, &render_scattering(small, family, tile))
+    let (to_noise, to_family) =
+        distances_of_scatterings(&photo, &noise, &render_scattering(small, family, tile));
+    to_noise - to_family
 }
 
 /// The scattering features of `params` rendered as the ranking renders its candidates.
@@ -269,12 +271,6 @@ fn photo_and_noise_scattering(small: &Photo, noise: &Params, tile: &Tile) -> (Ve
         || crate::scattering::features(small),
         || render_scattering(small, noise, tile),
     )
-}
-
-/// [`nearer_render_margin`] from the three scatterings.
-fn margin_of_scatterings(photo: &[f64], noise: &[f64], family: &[f64]) -> f64 {
-    let (to_noise, to_family) = distances_of_scatterings(photo, noise, family);
-    to_noise - to_family
 }
 
 /// The photo's scattering distances to the noise model's render and to the family's.
@@ -376,13 +372,10 @@ impl Suggester {
                 // nearer to the photo ([`NEARER_RENDER_MARGIN`]); measured only then (the first
                 // round of the family's final fit, two renders and three scatterings).
                 if by_score && !unexplained {
-                    let distances = self.nearer_family_render(db, &noise, &tile);
-                    noise.nearer_render_margin =
-                        distances.map(|(to_noise, to_family)| to_noise - to_family);
-                    noise.nearer_render_distances = distances;
+                    noise.nearer_render_distances = self.nearer_family_render(db, &noise, &tile);
                 }
                 let nearer_family = noise
-                    .nearer_render_margin
+                    .nearer_render_margin()
                     .is_some_and(|m| m > NEARER_RENDER_MARGIN);
                 let first = if unexplained || nearer_family { 0 } else { b };
                 families[..=first].rotate_right(1);
@@ -426,7 +419,6 @@ impl Suggester {
             render_ordered: true,
             preview: Some(noise),
             render_classes: noise_classes,
-            nearer_render_margin: None,
             nearer_render_distances: None,
         };
         let complete = self.pending().is_empty();
@@ -454,7 +446,6 @@ impl Suggester {
                     render_ordered: k < ordered,
                     preview: None,
                     render_classes: None,
-                    nearer_render_margin: None,
                     nearer_render_distances: None,
                 }
             })

@@ -400,7 +400,7 @@ fn the_nearer_render_fit_in_tasks_ranks_and_adopts_the_same() {
         assert!(!job.fit_on_ranking_photo());
         assert!(job.begin_nearer(db).is_none(), "the round is stored");
         assert_eq!(job.rank(db), rows);
-        let margin = |j: &SuggestJob| j.ranked.iter().find_map(|s| s.nearer_render_margin);
+        let margin = |j: &SuggestJob| j.ranked.iter().find_map(|s| s.nearer_render_margin());
         assert!(margin(&job).is_some());
         assert_eq!(margin(&job), margin(&whole));
         if first != "noise" {
