@@ -118,6 +118,9 @@ async function morphHalfway(page, structured = false) {
   // Structured: to about t = 0.3, inside the first half, where the brick pattern still shows.
   await page.mouse.move(x + Math.min(structured ? 30 : 60, w / 3), y + h / 2, { steps: 4 });
   await page.mouse.up();
+  // The drag reaches the app over a few frames; on a loaded software adapter two were once not
+  // enough (t still 0), so wait until the app reports the slider's new t.
+  await expect.poll(async () => (await state(page)).morph_t, { timeout: 20_000 }).toBeGreaterThan(0.05);
   await waitFrames(page, 2);
   const t = (await state(page)).morph_t;
   expect(t).toBeGreaterThan(0.05);
