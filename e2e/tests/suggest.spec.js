@@ -153,15 +153,17 @@ test('a gravel photo ranks the noise model first and keeps it', async ({ page })
 });
 
 // The nearer-render rule's fit ran in tasks before the list (`t`: `lastSuggestions()`), shared
-// with the helper workers where there are any.
+// with the helper workers where there are any: a helper took some of the round's work, its
+// tasks or the two scatterings. Which of the two is scheduling: on a loaded machine the helper
+// that scatters can come back after this worker has done every task (0 of 7 helped, scattered
+// there), so neither alone is asserted.
 function expectNearerInTasks(t) {
   console.log(`the nearer render's first round: ${t.nearer?.ms.toFixed(0)} ms, ${t.nearer?.helped} of ` +
     `${t.nearer?.tasks} tasks by ${t.helpers} helper workers; scattered there: ${t.nearer?.scattered}`);
   expect(t.nearer).not.toBeNull();
   expect(t.nearer.tasks).toBeGreaterThan(1);
   if (t.helpers > 0) {
-    expect(t.nearer.helped).toBeGreaterThan(0);
-    expect(t.nearer.scattered).toBe(true);
+    expect(t.nearer.helped > 0 || t.nearer.scattered).toBe(true);
   }
 }
 
