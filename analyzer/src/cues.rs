@@ -131,6 +131,12 @@ pub fn dark_skewness(photo: &Photo) -> f32 {
     moment(&detrended(&luminance_map(photo)), 3)
 }
 
+/// `photo`'s luminance map ([`SIZE`]², its centre square) without its shading, standardised:
+/// the map the `skewness` cue is the third moment of.
+pub fn detrended_luminance(photo: &Photo) -> Vec<f32> {
+    detrended(&luminance_map(photo))
+}
+
 /// `v` with zero mean and unit deviation (zeros when flat).
 fn standardised(v: &[f32]) -> Vec<f32> {
     let n = v.len() as f64;

@@ -1,0 +1,185 @@
+//! What tells a network of thin dark lines (joints, cracks) from dark grain, pits and stains?
+//! For every quadrant of a photo set, statistics of the detrended luminance map that the
+//! `skewness` cue ([`proctex::cues::dark_skewness`]) reads: its skewness, the skewness of its
+//! finer bands, and the balance of dark against bright lines by the Hessian's eigenvalues.
+//!
+//! Prints TSV: file, patch name (as the yardstick names it), category, labels, then the
+//! statistics in the order of `NAMES`.
+//!
+//! `cargo run --release -p proctex-analyzer --example dark_network_lab -- SET_DIR`
+
+mod lab_common;
+
+use proctex::cues::{blur, detrended_luminance};
+use proctex::gabor::SIZE;
+
+const NAMES: [&str; 14] = [
+    "skewness",
+    "skew_fine1",
+    "skew_fine1.5",
+    "skew_fine3",
+    "dark_lines1",
+    "dark_lines1.5",
+    "dark_lines2",
+    "network10_16",
+    "network10_32",
+    "network5_32",
+    "network20_32",
+    "full10_32",
+    "full10_64",
+    "full20_64",
+];
+
+fn moment3(v: &[f32]) -> f32 {
+    let n = v.len() as f64;
+    let m = v.iter().map(|&x| x as f64).sum::<f64>() / n;
+    let var = v.iter().map(|&x| (x as f64 - m).powi(2)).sum::<f64>() / n;
+    if var < 1e-12 {
+        return 0.0;
+    }
+    (v.iter().map(|&x| (x as f64 - m).powi(3)).sum::<f64>() / n / var.powf(1.5)) as f32
+}
+
+/// (Σ dark-line strength − Σ bright-line strength) / their sum, from the Hessian of the map
+/// smoothed at `sigma`: a dark line curves up across and not along (λ₁ > |λ₂|), a bright one
+/// down; blobs and step edges give little of either.
+fn dark_lines(map: &[f32], sigma: f32) -> f32 {
+    let n = SIZE;
+    let s = blur(map, n, sigma);
+    let at = |x: usize, y: usize| s[y * n + x] as f64;
+    let (mut dark, mut bright) = (0.0, 0.0);
+    for y in 1..n - 1 {
+        for x in 1..n - 1 {
+            let xx = at(x + 1, y) - 2.0 * at(x, y) + at(x - 1, y);
+            let yy = at(x, y + 1) - 2.0 * at(x, y) + at(x, y - 1);
+            let xy =
+                (at(x + 1, y + 1) - at(x - 1, y + 1) - at(x + 1, y - 1) + at(x - 1, y - 1)) / 4.0;
+            let mean = (xx + yy) / 2.0;
+            let r = (((xx - yy) / 2.0).powi(2) + xy * xy).sqrt();
+            let (l1, l2) = (mean + r, mean - r);
+            dark += (l1 - l2.abs()).max(0.0);
+            bright += (-l2 - l1.abs()).max(0.0);
+        }
+    }
+    ((dark - bright) / (dark + bright).max(1e-12)) as f32
+}
+
+/// The share of the darkest `fraction` of the fine band (the map minus its blur at 3 px) that
+/// lies in 8-connected components at least `extent` pixels across (their bounding box's longer
+/// side): joints and cracks connect into long components, pits and grain do not.
+fn network(map: &[f32], fraction: f32, extent: usize) -> f32 {
+    network_n(map, SIZE, fraction, extent)
+}
+
+fn network_n(map: &[f32], n: usize, fraction: f32, extent: usize) -> f32 {
+    let b = blur(map, n, 3.0);
+    let fine: Vec<f32> = map.iter().zip(&b).map(|(a, b)| a - b).collect();
+    let mut sorted = fine.clone();
+    sorted.sort_by(f32::total_cmp);
+    let t = sorted[((n * n) as f32 * fraction) as usize];
+    let mask: Vec<bool> = fine.iter().map(|&v| v < t).collect();
+    let mut label = vec![usize::MAX; n * n];
+    let (mut dark, mut long) = (0usize, 0usize);
+    let mut stack = Vec::new();
+    for s in 0..n * n {
+        if !mask[s] || label[s] != usize::MAX {
+            continue;
+        }
+        label[s] = s;
+        stack.push(s);
+        let (mut x0, mut x1, mut y0, mut y1, mut count) = (n, 0, n, 0, 0);
+        while let Some(j) = stack.pop() {
+            let (x, y) = (j % n, j / n);
+            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+            count += 1;
+            for dy in -1i64..=1 {
+                for dx in -1i64..=1 {
+                    let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+                    if nx < 0 || ny < 0 || nx >= n as i64 || ny >= n as i64 {
+                        continue;
+                    }
+                    let k = ny as usize * n + nx as usize;
+                    if mask[k] && label[k] == usize::MAX {
+                        label[k] = s;
+                        stack.push(k);
+                    }
+                }
+            }
+        }
+        dark += count;
+        if (x1 - x0 + 1).max(y1 - y0 + 1) >= extent {
+            long += count;
+        }
+    }
+    long as f32 / dark.max(1) as f32
+}
+
+/// [`network`] on the photo's own pixels (its centre square, at most 256 px, luminance
+/// detrended at 24 px), extents in those pixels.
+fn full(photo: &proctex::input::Photo, fraction: f32, extent: usize) -> f32 {
+    let side = photo.width.min(photo.height).min(256) as usize;
+    let (x0, y0) = (
+        (photo.width as usize - side) / 2,
+        (photo.height as usize - side) / 2,
+    );
+    let mut lum = vec![0f32; side * side];
+    for y in 0..side {
+        for x in 0..side {
+            let c = photo.pixels[(y0 + y) * photo.width as usize + x0 + x];
+            lum[y * side + x] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        }
+    }
+    let shading = blur(&lum, side, 24.0);
+    let map: Vec<f32> = lum.iter().zip(&shading).map(|(a, b)| a - b).collect();
+    network_n(&map, side, fraction, extent)
+}
+
+fn main() {
+    let dir = std::env::args()
+        .nth(1)
+        .expect("usage: dark_network_lab SET_DIR");
+    let names = ["top-left", "top-right", "bottom-left", "bottom-right"];
+    let patches: Vec<(usize, lab_common::Patch)> =
+        lab_common::load(&dir).into_iter().enumerate().collect();
+    let lines = proctex::parallel::map_in_order(&patches, |(i, p)| {
+        let map = detrended_luminance(&p.photo);
+        let fine = |sigma: f32| {
+            let b = blur(&map, SIZE, sigma);
+            let f: Vec<f32> = map.iter().zip(&b).map(|(a, b)| a - b).collect();
+            moment3(&f)
+        };
+        let v = [
+            moment3(&map),
+            fine(1.0),
+            fine(1.5),
+            fine(3.0),
+            dark_lines(&map, 1.0),
+            dark_lines(&map, 1.5),
+            dark_lines(&map, 2.0),
+            network(&map, 0.10, 16),
+            network(&map, 0.10, 32),
+            network(&map, 0.05, 32),
+            network(&map, 0.20, 32),
+            full(&p.photo, 0.10, 32),
+            full(&p.photo, 0.10, 64),
+            full(&p.photo, 0.20, 64),
+        ];
+        let v: Vec<String> = v.iter().map(|x| format!("{x:.4}")).collect();
+        format!(
+            "{}\t{}\t{}\t{}\t{}",
+            p.file,
+            names[i % 4],
+            if p.structured {
+                "structured"
+            } else {
+                "stochastic"
+            },
+            p.labels.join("/"),
+            v.join("\t")
+        )
+    });
+    println!("file\tpatch\tcategory\tlabels\t{}", NAMES.join("\t"));
+    for l in lines {
+        println!("{l}");
+    }
+}
