@@ -78,39 +78,23 @@ fn network_n(map: &[f32], n: usize, fraction: f32, extent: usize) -> f32 {
     sorted.sort_by(f32::total_cmp);
     let t = sorted[((n * n) as f32 * fraction) as usize];
     let mask: Vec<bool> = fine.iter().map(|&v| v < t).collect();
-    let mut label = vec![usize::MAX; n * n];
-    let (mut dark, mut long) = (0usize, 0usize);
-    let mut stack = Vec::new();
-    for s in 0..n * n {
-        if !mask[s] || label[s] != usize::MAX {
+    let (labels, count) = lab_common::topology::label(&mask, n, true);
+    // Each component's pixel count and bounding box (x0, x1, y0, y1).
+    let mut parts = vec![(0usize, n, 0usize, n, 0usize); count];
+    for (j, &l) in labels.iter().enumerate() {
+        if l == usize::MAX {
             continue;
         }
-        label[s] = s;
-        stack.push(s);
-        let (mut x0, mut x1, mut y0, mut y1, mut count) = (n, 0, n, 0, 0);
-        while let Some(j) = stack.pop() {
-            let (x, y) = (j % n, j / n);
-            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-            count += 1;
-            for dy in -1i64..=1 {
-                for dx in -1i64..=1 {
-                    let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-                    if nx < 0 || ny < 0 || nx >= n as i64 || ny >= n as i64 {
-                        continue;
-                    }
-                    let k = ny as usize * n + nx as usize;
-                    if mask[k] && label[k] == usize::MAX {
-                        label[k] = s;
-                        stack.push(k);
-                    }
-                }
-            }
-        }
-        dark += count;
-        if (x1 - x0 + 1).max(y1 - y0 + 1) >= extent {
-            long += count;
-        }
+        let (x, y) = (j % n, j / n);
+        let c = &mut parts[l];
+        *c = (c.0 + 1, c.1.min(x), c.2.max(x), c.3.min(y), c.4.max(y));
     }
+    let dark: usize = parts.iter().map(|c| c.0).sum();
+    let long: usize = parts
+        .iter()
+        .filter(|c| (c.2 - c.1 + 1).max(c.4 - c.3 + 1) >= extent)
+        .map(|c| c.0)
+        .sum();
     long as f32 / dark.max(1) as f32
 }
 
@@ -138,7 +122,6 @@ fn main() {
     let dir = std::env::args()
         .nth(1)
         .expect("usage: dark_network_lab SET_DIR");
-    let names = ["top-left", "top-right", "bottom-left", "bottom-right"];
     let patches: Vec<(usize, lab_common::Patch)> =
         lab_common::load(&dir).into_iter().enumerate().collect();
     let lines = proctex::parallel::map_in_order(&patches, |(i, p)| {
@@ -165,18 +148,7 @@ fn main() {
             full(&p.photo, 0.20, 64),
         ];
         let v: Vec<String> = v.iter().map(|x| format!("{x:.4}")).collect();
-        format!(
-            "{}\t{}\t{}\t{}\t{}",
-            p.file,
-            names[i % 4],
-            if p.structured {
-                "structured"
-            } else {
-                "stochastic"
-            },
-            p.labels.join("/"),
-            v.join("\t")
-        )
+        format!("{}\t{}", lab_common::patch_columns(p, *i), v.join("\t"))
     });
     println!("file\tpatch\tcategory\tlabels\t{}", NAMES.join("\t"));
     for l in lines {

@@ -1,11 +1,11 @@
 //! Where the noise model's specks come from, on every quadrant of a photo set: the noise model's
 //! analysis rendered at the quadrant's size at four seeds with one part taken out at a time
-//! (the output tone curve, the histogram spline),
-//! speck fractions ([`proctex::specks::speck_fraction`]) averaged over the seeds.
+//! (the output tone curve, the histogram spline), speck fractions
+//! ([`proctex::specks::speck_fraction`]) averaged over the seeds.
 //!
-//! Prints TSV: file, patch, category, the photo's fraction, then the model's, without the tone
-//! curve, without the histogram, without either, and without the finest band's part drawn after
-//! the histogram (that band then absent).
+//! Prints TSV: file, patch, category, labels, the photo's fraction, then the model's, without
+//! the tone curve, without the histogram, without either, and without the finest band's part
+//! drawn after the histogram (that band then absent).
 //!
 //! `cargo run --release -p proctex-analyzer --example noise_speck_lab -- SET_DIR`
 
@@ -23,7 +23,6 @@ fn main() {
     let dir = std::env::args()
         .nth(1)
         .expect("usage: noise_speck_lab SET_DIR");
-    let names = ["top-left", "top-right", "bottom-left", "bottom-right"];
     let patches: Vec<(usize, lab_common::Patch)> =
         lab_common::load(&dir).into_iter().enumerate().collect();
     let lines = proctex::parallel::map_in_order(&patches, |(i, p)| {
@@ -71,15 +70,8 @@ fn main() {
         ];
         let v: Vec<String> = v.iter().map(|x| format!("{x:.5}")).collect();
         format!(
-            "{}\t{}\t{}\t{}\t{:.5}\t{}",
-            p.file,
-            names[i % 4],
-            if p.structured {
-                "structured"
-            } else {
-                "stochastic"
-            },
-            p.labels.join("/"),
+            "{}\t{:.5}\t{}",
+            lab_common::patch_columns(p, *i),
             speck_fraction(&p.photo),
             v.join("\t")
         )

@@ -52,6 +52,28 @@ pub fn quadrants(photo: &Photo) -> Vec<Photo> {
         .collect()
 }
 
+/// The names the yardstick gives the quadrants ([`proctex::devset::PATCHES`]), in the order
+/// of [`quadrants`].
+pub const QUADRANT_NAMES: [&str; 4] = ["top-left", "top-right", "bottom-left", "bottom-right"];
+
+/// The leading TSV columns of a laboratory's line for `p`, the `index`-th patch of [`load`]:
+/// file, quadrant name, category, labels (joined by `/`).
+// Only the laboratories that print one line per patch with its labels use it.
+#[allow(dead_code)]
+pub fn patch_columns(p: &Patch, index: usize) -> String {
+    format!(
+        "{}\t{}\t{}\t{}",
+        p.file,
+        QUADRANT_NAMES[index % 4],
+        if p.structured {
+            "structured"
+        } else {
+            "stochastic"
+        },
+        p.labels.join("/")
+    )
+}
+
 /// `photo` written as an 8-bit RGB PNG at `path` (values clamped to 0–1).
 // Only the laboratories that write their renders out save images.
 #[allow(dead_code)]

@@ -222,7 +222,7 @@ fn spread(v: &mut [f64]) -> f64 {
 
 /// Connected components of the `true` pixels (8- or 4-connected, not wrapping): a label per
 /// pixel (`usize::MAX` outside) and the count.
-fn label(mask: &[bool], n: usize, eight: bool) -> (Vec<usize>, usize) {
+pub fn label(mask: &[bool], n: usize, eight: bool) -> (Vec<usize>, usize) {
     let mut labels = vec![usize::MAX; n * n];
     let mut next = 0;
     let mut stack = Vec::new();
