@@ -18,11 +18,10 @@ fold's t then replayed on the OTHER runs (sets the threshold is not chosen on).
 
 Usage: tools/devset_dark_network_gate.py DEV_RUN.jsonl [OTHER_RUN.jsonl ...]
 """
-import json
 import math
 import sys
 
-from devset_occam_cv import fold_of, patch_overall
+from devset_occam_cv import fold_of, noise_and_best, patch_overall, quadrants
 
 DARK_NETWORK_SKEWNESS = -0.599
 SKEWNESS = 7
@@ -31,24 +30,18 @@ FOLDS = 4
 
 def rows_of(run):
     rows = []
-    for line in open(run):
-        if not line.startswith('{"photo"'):
-            continue
-        p = json.loads(line)["photo"]
-        for i, c in enumerate(p["choices"]):
-            noise = next(x for x in c["ranking"] if x["name"] == "noise")
-            fitted = [x for x in c["ranking"] if x["name"] != "noise" and x.get("distance") is not None]
-            best = min(fitted, key=lambda x: x["score"])
-            distances = dict(zip(c["classifier"], c["classifier_distances"]))
-            nearest = next(k for k in c["classifier"] if k != "noise")
-            photo_margin = distances["noise"] - distances[nearest]
-            rows.append(dict(
-                file=p["entry"]["file"], labels=p["entry"]["families"], chosen=c["chosen"],
-                gated=c["photo_cues"][SKEWNESS] < DARK_NETWORK_SKEWNESS
-                and noise["score"] <= best["score"],
-                unexplained=photo_margin - c["noise_render_margin"],
-                served=c["chosen"] == "noise"
-                or patch_overall(p["auto"], i) <= patch_overall(p["noise"], i)))
+    for p, i, c in quadrants(run):
+        noise, best = noise_and_best(c)
+        distances = dict(zip(c["classifier"], c["classifier_distances"]))
+        nearest = next(k for k in c["classifier"] if k != "noise")
+        photo_margin = distances["noise"] - distances[nearest]
+        rows.append(dict(
+            file=p["entry"]["file"], labels=p["entry"]["families"], chosen=c["chosen"],
+            gated=c["photo_cues"][SKEWNESS] < DARK_NETWORK_SKEWNESS
+            and noise["score"] <= best["score"],
+            unexplained=photo_margin - c["noise_render_margin"],
+            served=c["chosen"] == "noise"
+            or patch_overall(p["auto"], i) <= patch_overall(p["noise"], i)))
     return rows
 
 

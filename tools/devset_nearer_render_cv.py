@@ -29,11 +29,10 @@ Usage: tools/devset_nearer_render_cv.py RUN.jsonl [--check TAU WITH.jsonl | --ma
 With `--at TAU`, only the replay at TAU against the run without the rule (a set the threshold is
 not chosen on: the shipped samples, textures never tuned on), with what it switches.
 """
-import json
 import math
 import sys
 
-from devset_occam_cv import fold_of, patch_overall
+from devset_occam_cv import fold_of, patch_overall, quadrants
 
 FOLDS = 4
 
@@ -45,25 +44,21 @@ def rows_of(run, margins=None, ratio=False):
     family no farther than it), `nearest` (the classifier's nearest family) and `margin` (the
     run's, or `margins`' {(photo, patch): margin} for a run made without the rule)."""
     rows = []
-    for line in open(run):
-        if not line.startswith('{"photo"'):
-            continue
-        p = json.loads(line)["photo"]
-        for i, c in enumerate(p["choices"]):
-            recorded = c.get("nearer_render_margin")
-            before = "noise" if recorded is not None else c["chosen"]
-            if margins is not None:
-                margin = margins[(p["entry"]["file"], c["patch"])]
-            elif ratio:
-                d = c.get("nearer_render_distances")
-                margin = -math.inf if d is None else math.log(d[0] / max(d[1], 1e-12))
-            else:
-                margin = -math.inf if recorded is None else recorded
-            served = before == "noise" or (
-                patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
-            nearest = next((k for k in c["classifier"] if k != "noise"), None)
-            rows.append((p["entry"]["file"], p["entry"]["families"],
-                         dict(c, before=before, served=served, nearest=nearest, margin=margin)))
+    for p, i, c in quadrants(run):
+        recorded = c.get("nearer_render_margin")
+        before = "noise" if recorded is not None else c["chosen"]
+        if margins is not None:
+            margin = margins[(p["entry"]["file"], c["patch"])]
+        elif ratio:
+            d = c.get("nearer_render_distances")
+            margin = -math.inf if d is None else math.log(d[0] / max(d[1], 1e-12))
+        else:
+            margin = -math.inf if recorded is None else recorded
+        served = before == "noise" or (
+            patch_overall(p["auto"], i) <= patch_overall(p["noise"], i))
+        nearest = next((k for k in c["classifier"] if k != "noise"), None)
+        rows.append((p["entry"]["file"], p["entry"]["families"],
+                     dict(c, before=before, served=served, nearest=nearest, margin=margin)))
     return rows
 
 

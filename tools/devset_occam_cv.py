@@ -24,6 +24,23 @@ import sys
 OCCAM_GRID = [round(0.05 * i, 2) for i in range(0, 41)]  # 0 .. 2
 
 
+def quadrants(run):
+    """(photo, index, choice) for every patch of a `proctex fidelity --json` run, in order."""
+    for line in open(run):
+        if not line.startswith('{"photo"'):
+            continue
+        p = json.loads(line)["photo"]
+        for i, c in enumerate(p["choices"]):
+            yield p, i, c
+
+
+def noise_and_best(c):
+    """A patch's noise-model entry and its best-scored fitted family."""
+    noise = next(x for x in c["ranking"] if x["name"] == "noise")
+    fitted = [x for x in c["ranking"] if x["name"] != "noise" and x.get("distance") is not None]
+    return noise, min(fitted, key=lambda x: x["score"])
+
+
 def fold_of(name, folds):
     h = 0xcbf29ce484222325
     for b in name.encode():

@@ -1,7 +1,9 @@
 //! What tells a network of thin dark lines (joints, cracks) from dark grain, pits and stains?
 //! For every quadrant of a photo set, statistics of the detrended luminance map that the
 //! `skewness` cue ([`proctex::cues::dark_skewness`]) reads: its skewness, the skewness of its
-//! finer bands, and the balance of dark against bright lines by the Hessian's eigenvalues.
+//! finer bands, the balance of dark against bright lines by the Hessian's eigenvalues, and the
+//! share of its darkest pixels lying in long connected components (`network*`, `full*`), also
+//! with hysteresis (`hyst*`: grown through the next darkest pixels).
 //!
 //! Prints TSV: file, patch name (as the yardstick names it), category, labels, then the
 //! statistics in the order of `NAMES`.
@@ -13,7 +15,7 @@ mod lab_common;
 use proctex::cues::{blur, detrended_luminance};
 use proctex::gabor::SIZE;
 
-const NAMES: [&str; 14] = [
+const NAMES: [&str; 20] = [
     "skewness",
     "skew_fine1",
     "skew_fine1.5",
@@ -28,6 +30,12 @@ const NAMES: [&str; 14] = [
     "full10_32",
     "full10_64",
     "full20_64",
+    "hyst10_20_16",
+    "hyst10_25_32",
+    "hyst5_20_16",
+    "fullhyst10_20_32",
+    "fullhyst10_25_64",
+    "fullhyst5_20_32",
 ];
 
 fn moment3(v: &[f32]) -> f32 {
@@ -72,17 +80,26 @@ fn network(map: &[f32], fraction: f32, extent: usize) -> f32 {
 }
 
 fn network_n(map: &[f32], n: usize, fraction: f32, extent: usize) -> f32 {
+    hysteresis_n(map, n, fraction, fraction, extent)
+}
+
+/// [`network_n`] with hysteresis (Canny's): components of the darkest `grow` of the fine band
+/// that hold one of its darkest `seed` pixels; the share of those seed pixels lying in
+/// components at least `extent` across. A crack whose darkest pixels are broken by grain
+/// connects through its less dark ones; an isolated pit or stain stays small.
+fn hysteresis_n(map: &[f32], n: usize, seed: f32, grow: f32, extent: usize) -> f32 {
     let b = blur(map, n, 3.0);
     let fine: Vec<f32> = map.iter().zip(&b).map(|(a, b)| a - b).collect();
     let mut sorted = fine.clone();
     sorted.sort_by(f32::total_cmp);
-    let t = sorted[((n * n) as f32 * fraction) as usize];
+    let t_seed = sorted[((n * n) as f32 * seed) as usize];
+    let t = sorted[((n * n) as f32 * grow) as usize];
     let mask: Vec<bool> = fine.iter().map(|&v| v < t).collect();
     let (labels, count) = lab_common::topology::label(&mask, n, true);
-    // Each component's pixel count and bounding box (x0, x1, y0, y1).
+    // Each component's seed-pixel count and bounding box (x0, x1, y0, y1).
     let mut parts = vec![(0usize, n, 0usize, n, 0usize); count];
     for (j, &l) in labels.iter().enumerate() {
-        if l == usize::MAX {
+        if l == usize::MAX || fine[j] >= t_seed {
             continue;
         }
         let (x, y) = (j % n, j / n);
@@ -101,6 +118,11 @@ fn network_n(map: &[f32], n: usize, fraction: f32, extent: usize) -> f32 {
 /// [`network`] on the photo's own pixels (its centre square, at most 256 px, luminance
 /// detrended at 24 px), extents in those pixels.
 fn full(photo: &proctex::input::Photo, fraction: f32, extent: usize) -> f32 {
+    full_hysteresis(photo, fraction, fraction, extent)
+}
+
+/// [`hysteresis_n`] on the photo's own pixels, as [`full`].
+fn full_hysteresis(photo: &proctex::input::Photo, seed: f32, grow: f32, extent: usize) -> f32 {
     let side = photo.width.min(photo.height).min(256) as usize;
     let (x0, y0) = (
         (photo.width as usize - side) / 2,
@@ -115,7 +137,7 @@ fn full(photo: &proctex::input::Photo, fraction: f32, extent: usize) -> f32 {
     }
     let shading = blur(&lum, side, 24.0);
     let map: Vec<f32> = lum.iter().zip(&shading).map(|(a, b)| a - b).collect();
-    network_n(&map, side, fraction, extent)
+    hysteresis_n(&map, side, seed, grow, extent)
 }
 
 fn main() {
@@ -146,6 +168,12 @@ fn main() {
             full(&p.photo, 0.10, 32),
             full(&p.photo, 0.10, 64),
             full(&p.photo, 0.20, 64),
+            hysteresis_n(&map, SIZE, 0.10, 0.20, 16),
+            hysteresis_n(&map, SIZE, 0.10, 0.25, 32),
+            hysteresis_n(&map, SIZE, 0.05, 0.20, 16),
+            full_hysteresis(&p.photo, 0.10, 0.20, 32),
+            full_hysteresis(&p.photo, 0.10, 0.25, 64),
+            full_hysteresis(&p.photo, 0.05, 0.20, 32),
         ];
         let v: Vec<String> = v.iter().map(|x| format!("{x:.4}")).collect();
         format!("{}\t{}", lab_common::patch_columns(p, *i), v.join("\t"))
