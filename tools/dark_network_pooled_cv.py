@@ -15,14 +15,11 @@ family first), a skewness at or above T gives the noise model instead (served, n
 Thresholds above T0 are not replayed (the run has no fidelity for a family the rule would newly
 put first), so the search can only make the rule stricter or turn it off.
 
-Criterion, fixed before any fold was scored: the sum over the training pools of structured
-labelled rate + stochastic served rate (each pool weighs as much as the other, and in each a
-structured quadrant and a stochastic one by their class's size: the issue judges both rates).
-A pool's rates are over all its quadrants: the corpus run may hold only the textures the rule can
-touch, with `--sizes` giving the whole corpus's class sizes by fold (the untouched quadrants add
-the same to every threshold). Folds: 4 by file (devset::fold_of) within each pool; a held-out fold
-of both pools is scored with the threshold chosen on the other three of both. Ties: the
-strictest threshold among the best (the fewest quadrants decided by a cue the rule reads alone).
+The search (tools/pooled_cv.py): the pools' labelled and served rates summed, 4 folds by file in
+each, against the same search on the development set alone. The corpus run may hold only the
+textures the rule can touch, with CORPUS_MANIFEST giving the whole corpus's class sizes by fold
+(the untouched quadrants add the same to every threshold). Ties: the strictest threshold among
+the best (the fewest quadrants decided by a cue the rule reads alone).
 
 With --gate, a second cue gates the rule (nested: the cue, its direction and threshold chosen on
 the training folds with the skewness threshold): the rule decides only where that cue is also
@@ -35,11 +32,11 @@ Usage: tools/dark_network_pooled_cv.py DEV_RUN CORPUS_RUN CORPUS_MANIFEST [UNSEE
 """
 import sys
 
-from devset_occam_cv import fold_of, noise_and_best, patch_overall, quadrants
+import pooled_cv
+from devset_occam_cv import noise_and_best, patch_overall, quadrants
 
 T0 = -0.599  # retrieve::DARK_NETWORK_SKEWNESS, the threshold the runs were made with
 SKEWNESS = 7  # proctex::cues::SKEWNESS in photo_cues
-FOLDS = 4
 GRID = [T0] + [round(-0.6 - 0.05 * k, 2) for k in range(1, 29)] + [float("-inf")]
 
 
@@ -65,22 +62,6 @@ def rows_of(run, lab=None):
     return rows
 
 
-def sizes_of(rows):
-    """Structured and stochastic quadrants by fold."""
-    s = [[0, 0] for _ in range(FOLDS)]
-    for r in rows:
-        s[fold_of(r["file"], FOLDS)][r["labels"] == ["noise"]] += 1
-    return s
-
-
-def manifest_sizes(path):
-    s = [[0, 0] for _ in range(FOLDS)]
-    for line in open(path).read().splitlines()[1:]:
-        f = line.split("\t")
-        s[fold_of(f[0], FOLDS)][f[1] == "stochastic"] += 4
-    return s
-
-
 def keeps(r, cand):
     """Whether the rule still decides quadrant `r` under candidate (t, gate)."""
     t, gate = cand
@@ -104,19 +85,6 @@ def tally(rows, cand):
     return labelled, served
 
 
-def criterion(pools, folds, cand, counts=None):
-    """Σ over pools of labelled rate + served rate on `folds`, up to a constant: only the quadrants
-    the rule decides in the run can change (the corpus run may hold only those it can touch).
-    With `counts` (labelled, served) the rates of those counts over the pool's whole `folds`."""
-    total = 0.0
-    for rows, sizes in pools:
-        part = [r for r in rows if r["decided"] and fold_of(r["file"], FOLDS) in folds]
-        lab, srv = counts or tally(part, cand)
-        total += lab / max(sum(sizes[f][0] for f in folds), 1) \
-            + srv / max(sum(sizes[f][1] for f in folds), 1)
-    return total
-
-
 def candidates(pools, gate):
     """(t, None) for every t in GRID; with `gate`, also every lab cue's deciles over the decided
     quadrants, below and above, at every t."""
@@ -131,14 +99,12 @@ def candidates(pools, gate):
     return out
 
 
-def choose(pools, folds, cands):
-    scored = [(criterion(pools, folds, c), i) for i, c in enumerate(cands)]
-    best = max(s for s, _ in scored)
-    # Ties: the strictest (the rule deciding the fewest training quadrants), then the first.
-    tied = [cands[i] for s, i in scored if s >= best - 1e-12]
-    decided = [r for rows, _ in pools for r in rows
-               if r["decided"] and fold_of(r["file"], FOLDS) in folds]
-    return min(tied, key=lambda c: sum(keeps(r, c) for r in decided))
+class Rule:
+    """The dark-network rule for pooled_cv: a setting is (threshold, gate or None)."""
+    tally = staticmethod(lambda rows, cand: tally(rows, cand))
+    relevant = staticmethod(lambda r: r["decided"])
+    moved = staticmethod(lambda rows, cand: sum(r["decided"] and keeps(r, cand) for r in rows))
+    show = staticmethod(lambda cand: show(cand))
 
 
 def show(cand):
@@ -160,7 +126,7 @@ def main():
     runs = [args[0], args[1]] + args[3:]
     rows = [rows_of(run, labs[i] if labs else None) for i, run in enumerate(runs)]
     dev, corpus, unseen = rows[0], rows[1], list(zip(args[3:], rows[2:]))
-    pools = [(dev, sizes_of(dev)), (corpus, manifest_sizes(args[2]))]
+    pools = [(dev, pooled_cv.sizes_of(dev)), (corpus, pooled_cv.manifest_sizes(args[2]))]
     cands = candidates(pools, bool(labs))
     for name, rs in [("development set", dev), ("corpus", corpus)] + unseen:
         d = [r for r in rs if r["decided"]]
@@ -171,26 +137,7 @@ def main():
     d0, c0 = tally(dev, (T0, None)), tally(corpus, (T0, None))
     print(f"the product ({show((T0, None))}): development set {d0[0]} / {d0[1]}, corpus "
           f"{c0[0]} / {c0[1]} (touchable textures only)")
-    # Two procedures, each scored where it did not choose: chosen on both pools' training folds,
-    # and chosen on the development set's training folds alone (the corpus is then all held out).
-    for title, train in [("both pools", pools), ("the development set alone", pools[:1])]:
-        chosen, held = [], {"dev": [0, 0], "corpus": [0, 0]}
-        for f in range(FOLDS):
-            c = choose(train, [g for g in range(FOLDS) if g != f], cands)
-            chosen.append(c)
-            for key, rs in [("dev", dev), ("corpus", corpus)]:
-                a, b = tally([r for r in rs if fold_of(r["file"], FOLDS) == f], c)
-                held[key] = [held[key][0] + a, held[key][1] + b]
-        score = sum(criterion([(rs, sz)], list(range(FOLDS)), None, held[k])
-                    for (rs, sz), k in zip(pools, ["dev", "corpus"]))
-        print(f"chosen on {title}: folds {'; '.join(show(c) for c in chosen)}; all folds "
-              f"{show(choose(train, list(range(FOLDS)), cands))}")
-        print(f"  held out: development set {held['dev'][0]} / {held['dev'][1]}, corpus "
-              f"{held['corpus'][0]} / {held['corpus'][1]}; criterion {score:.4f}")
-        for name, rs in unseen:
-            print(f"  {name} at the folds' choices: "
-                  + "; ".join("%s: %d / %d" % ((show(c),) + tally(rs, c)) for c in chosen))
-
+    pooled_cv.report(Rule, pools, ["development set", "corpus"], cands, unseen)
 
 if __name__ == "__main__":
     main()
