@@ -99,20 +99,20 @@ def candidates(pools, gate):
     return out
 
 
-class Rule:
-    """The dark-network rule for pooled_cv: a setting is (threshold, gate or None)."""
-    tally = staticmethod(lambda rows, cand: tally(rows, cand))
-    relevant = staticmethod(lambda r: r["decided"])
-    moved = staticmethod(lambda rows, cand: sum(r["decided"] and keeps(r, cand) for r in rows))
-    show = staticmethod(lambda cand: show(cand))
-
-
 def show(cand):
     t, gate = cand
     s = "off" if t == float("-inf") else f"{t:.2f}"
     if gate:
         s += f" & {gate[0]} {'<' if gate[1] else '>='} {gate[2]:.3f}"
     return s
+
+
+class Rule:
+    """The dark-network rule for pooled_cv: a setting is (threshold, gate or None)."""
+    tally = staticmethod(tally)
+    relevant = staticmethod(lambda r: r["decided"])
+    moved = staticmethod(lambda rows, cand: sum(r["decided"] and keeps(r, cand) for r in rows))
+    show = staticmethod(show)
 
 
 def main():
