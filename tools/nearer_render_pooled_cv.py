@@ -47,14 +47,7 @@ class Rule:
 
     @staticmethod
     def tally(rows, t):
-        labelled = served = 0
-        for r in rows:
-            chosen = chosen_at(r, t)
-            if r["labels"] == ["noise"]:
-                served += chosen == "noise" or (chosen == r["chosen"] and r["measured_ok"])
-            else:
-                labelled += chosen in r["labels"]
-        return labelled, served
+        return pooled_cv.tally_first(rows, lambda r: chosen_at(r, t))
 
     relevant = staticmethod(lambda r: r["before"] == "noise" and math.isfinite(r["margin"]))
     moved = staticmethod(lambda rows, t: sum(chosen_at(r, t) != r["before"] for r in rows))

@@ -41,6 +41,21 @@ def manifest_sizes(path):
     return s
 
 
+def tally_first(rows, first, served_ok="measured_ok"):
+    """(structured labelled, stochastic served) of `rows` whose first model `first(row)` gives: a
+    stochastic row (labels ["noise"]) is served by the noise model, or by the family the run chose
+    where the run measured it no farther than the noise model (`row[served_ok]`); another family's
+    fidelity was not measured, so it counts as not served."""
+    labelled = served = 0
+    for r in rows:
+        chosen = first(r)
+        if r["labels"] == ["noise"]:
+            served += chosen == "noise" or (chosen == r["chosen"] and r[served_ok])
+        else:
+            labelled += chosen in r["labels"]
+    return labelled, served
+
+
 def in_folds(rows, folds):
     return [r for r in rows if fold_of(r["file"], FOLDS) in folds]
 
