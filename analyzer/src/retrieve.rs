@@ -15,11 +15,12 @@
 //!    it orders the fitted families ([`TEXTURE_WEIGHT`]); see [`Suggester::suggestions`].
 
 mod rank;
+mod rules;
 
-pub use rank::{
+pub use rank::{nearer_render_margin, self_distance, texture_distance};
+pub use rules::{
     CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NEARER_RENDER_MARGIN, NOISE_MODEL_MARGIN,
-    RENDER_NULL_MARGIN, RENDER_ORDERED, TEXTURE_WEIGHT, nearer_render_margin, self_distance,
-    texture_distance,
+    RENDER_NULL_MARGIN, RENDER_ORDERED, TEXTURE_WEIGHT,
 };
 
 use crate::analyze::{Analysis, Options, analyze_photo_with, analyze_prepared};
