@@ -19,8 +19,10 @@ const CASES: usize = 48;
 /// 3.5 points; about 5 minutes instead of 15 on two cores), with the same guard;
 /// `PROCTEX_TEST=full` runs all 432 (the README's row).
 const QUICK_STRIDE: usize = 3;
-/// The rate measured on all 432 cases when the ranking last changed: 164 of 432 (38.0 %) since
-/// ridged's crests are drawn over the noise's change where the pixel is
+/// The rate measured on all 432 cases when the ranking last changed: 163 of 432 (37.7 %) since
+/// the noise model's margin is 0.35 (`retrieve::NOISE_MODEL_MARGIN`: ridged 25 of 48, grid 23,
+/// brick 24, cells 23, planks 32, wood lines 34; on 183 textures never tuned on 165 → 173 of 268);
+/// 164 (38.0 %) since ridged's crests are drawn over the noise's change where the pixel is
 /// (`render::pattern::ridged_octaves`: ridged 21 → 25 of 48, cells 23 → 24, planks 31 → 32);
 /// 158 (36.6 %) since wood lines and rings are drawn at least a pixel wide and averaged over it
 /// (`render::pattern::line_profile`: wood lines 33 → 34 of 48); 157 (36.3 %) since
@@ -49,7 +51,7 @@ const QUICK_STRIDE: usize = 3;
 /// texture, 259 (266 with the third batch; not kept: the benchmarks' brick crop lost its family
 /// and its speed). The test guards against a regression: the rate plus two
 /// standard errors must reach it. (The two-tone paper's 90 % is rejected by these cases.)
-const MEASURED_RATE: f32 = 164.0 / 432.0;
+const MEASURED_RATE: f32 = 163.0 / 432.0;
 
 #[test]
 fn synthetic_round_trip_finds_the_right_family() {
@@ -129,7 +131,8 @@ fn synthetic_round_trip_finds_the_right_family() {
         100.0 * se,
         100.0 * MEASURED_RATE
     );
-    // Measured on all 432 cases: median 3.07, 90th percentile 5.81 since wood lines and rings
+    // Measured on all 432 cases: median 3.14, 90th percentile 5.78 since the noise model's margin
+    // is 0.35; 3.07 and 5.81 since wood lines and rings
     // are averaged over the pixel (3.18 and 5.69 before); 3.18 and 5.83 since `RENDER_NULL_MARGIN`
     // covers the families (3.01 and 5.32 with the noise model's part alone, 5.08 before it: the
     // families that rule puts first are farther than the first by score; 5.03 before the

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
-"""The weight of the family classifier's opinion in the order of the fitted families
-(retrieve::CLASSIFIER_WEIGHT) cross-validated over the development set and the classifier's
-labelled training corpus together (tools/pooled_cv.py), then replayed on sets neither chose it on.
+"""A constant of the ranking's first choice cross-validated over the development set and the
+classifier's labelled training corpus together (tools/pooled_cv.py), then replayed on sets neither
+chose it on: the weight of the family classifier's opinion in the order of the fitted families
+(`weight`, retrieve::CLASSIFIER_WEIGHT) or the noise model's margin (`noise-margin`,
+retrieve::NOISE_MODEL_MARGIN, a fraction of the photo's self distance).
 
 The whole first choice is replayed from a run's recorded numbers, every rule after the order in
 turn, as retrieve::Suggester::ranked makes it: the classifier's first three families scored by
 0.1 structure + 0.9 texture distance + margin + λ · (d − d₀) / 2 · self distance (d the family's
 squared class distance, d₀ the nearest of the three's); the noise model first where its texture
-distance is below the best family's plus the margin and the photo has no dark network; then the
+distance is below the best family's plus the margin (m · self distance) and the photo has no dark
+network; then the
 render-null rule (RENDER_NULL_MARGIN) on that first candidate, then the nearer-render rule
 (NEARER_RENDER_MARGIN) where the noise model is still first. The nearer-render margin was recorded
 only where the run left the noise model first; a quadrant another λ leaves to the noise model
@@ -18,7 +21,7 @@ noise model.
 Caveat: the corpus is the classifier's training set, where its class distances are in-sample, so
 that pool flatters any weight of the classifier's opinion; sets it never saw say more.
 
-Usage: tools/classifier_weight_pooled_cv.py DEV_RUN CORPUS_RUN [UNSEEN_RUN ...]
+Usage: tools/ranking_pooled_cv.py weight|noise-margin DEV_RUN CORPUS_RUN [UNSEEN_RUN ...]
 """
 import math
 import sys
@@ -32,8 +35,13 @@ DARK_NETWORK_SKEWNESS = -0.599
 NOISE_MODEL_MARGIN = 0.2
 RENDER_NULL_MARGIN = 9.25
 NEARER_RUNS, NEARER = 1.2364, 1.4801  # retrieve::NEARER_RENDER_MARGIN in the runs, and now
-RUNS = 0.02  # retrieve::CLASSIFIER_WEIGHT in the runs and now
-GRID = [0, 0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.5, 1, 2, 5]
+CLASSIFIER_WEIGHT = 0.02  # retrieve::CLASSIFIER_WEIGHT in the runs and now
+RUNS = (CLASSIFIER_WEIGHT, NOISE_MODEL_MARGIN)  # a setting: (λ, m)
+GRIDS = {
+    "weight": [(lam, NOISE_MODEL_MARGIN) for lam in
+               [0, 0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.5, 1, 2, 5]],
+    "noise-margin": [(CLASSIFIER_WEIGHT, m / 100) for m in range(-50, 101, 5)],
+}
 
 
 def rows_of(run):
@@ -63,14 +71,15 @@ def rows_of(run):
     return rows
 
 
-def chosen_at(r, lam, nearer=NEARER, unknown=None):
+def chosen_at(r, setting, nearer=NEARER, unknown=None):
+    lam, m = setting
     classes, fitted, nearest = r["classes"], r["fitted"], r["nearest"]
     u = r["margin"] / NOISE_MODEL_MARGIN  # the photo's self distance
     d0 = min(classes[k] for k in fitted)
+    # Every fitted family's score holds the same margin: only the noise model's comparison moves.
     score = {k: f["blend"] + lam * (classes[k] - d0) / 2 * u for k, f in fitted.items()}
     best = min(score, key=score.get)
-    noise_score = r["noise_distance"] - (fitted[best]["texture"] - score[best]) - r["margin"]
-    if not r["dark"] and noise_score <= score[best]:
+    if not r["dark"] and r["noise_distance"] - fitted[best]["texture"] <= m * u:
         photo = classes["noise"] - classes[nearest]
         if photo - r["noise_render_margin"] > RENDER_NULL_MARGIN:
             return nearest
@@ -88,36 +97,37 @@ def chosen_at(r, lam, nearer=NEARER, unknown=None):
 
 
 class Rule:
-    """The classifier's weight for pooled_cv: a setting is λ."""
+    """A ranking constant for pooled_cv: a setting is (λ, m)."""
 
     @staticmethod
-    def tally(rows, lam):
-        return pooled_cv.tally_first(rows, lambda r: chosen_at(r, lam))
+    def tally(rows, setting):
+        return pooled_cv.tally_first(rows, lambda r: chosen_at(r, setting))
 
-    relevant = staticmethod(lambda r: len(r["fitted"]) > 1)
-    moved = staticmethod(lambda rows, lam: sum(
-        chosen_at(r, lam) != chosen_at(r, RUNS) for r in rows))
-    show = staticmethod(lambda lam: f"{lam:g}")
+    relevant = staticmethod(lambda r: True)
+    moved = staticmethod(lambda rows, setting: sum(
+        chosen_at(r, setting) != chosen_at(r, RUNS) for r in rows))
+    show = staticmethod(lambda setting: "λ %g, m %g" % setting)
 
 
 def main():
-    if len(sys.argv) < 3:
+    if len(sys.argv) < 4 or sys.argv[1] not in GRIDS:
         sys.exit(__doc__)
-    dev, corpus = rows_of(sys.argv[1]), rows_of(sys.argv[2])
-    unseen = [(run, rows_of(run)) for run in sys.argv[3:]]
+    grid = GRIDS[sys.argv[1]]
+    dev, corpus = rows_of(sys.argv[2]), rows_of(sys.argv[3])
+    unseen = [(run, rows_of(run)) for run in sys.argv[4:]]
     for name, rows in [("development set", dev), ("corpus", corpus)] + unseen:
         structured = sum(r["labels"] != ["noise"] for r in rows)
         same = sum(chosen_at(r, RUNS, NEARER_RUNS) == r["chosen"] for r in rows)
         print(f"{name}: {structured} structured, {len(rows) - structured} stochastic quadrants; "
               f"the replay at the runs' settings reproduces {same} of {len(rows)} choices")
-        for lam in GRID:
+        for setting in grid:
             unknown = []
             for r in rows:
-                chosen_at(r, lam, unknown=unknown)
-            print("  λ %-6g labelled %d, served %d (unknown %d)"
-                  % ((lam,) + Rule.tally(rows, lam) + (len(unknown),)))
+                chosen_at(r, setting, unknown=unknown)
+            print("  %s: labelled %d, served %d (unknown %d)"
+                  % ((Rule.show(setting),) + Rule.tally(rows, setting) + (len(unknown),)))
     pools = [(dev, pooled_cv.sizes_of(dev)), (corpus, pooled_cv.sizes_of(corpus))]
-    pooled_cv.report(Rule, pools, ["development set", "corpus"], GRID, unseen)
+    pooled_cv.report(Rule, pools, ["development set", "corpus"], grid, unseen)
 
 
 if __name__ == "__main__":
