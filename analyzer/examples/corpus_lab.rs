@@ -33,6 +33,7 @@
 //!   first family as the label): what the development photos would add as training textures.
 //!   `CORPUS_LAB_FEATURES=PATH` writes every training quadrant's and development patch's
 //!   features (`tools/classifier_lab.py` scores other classifiers on them).
+//!   `CORPUS_LAB_PRIORS=S,…` sweeps the class prior's weight ([`prior_sweep`]).
 //! - `corpus_lab table LABELS DIR OUT`: the same discriminant (setting chosen on the corpus),
 //!   trained on every labelled texture and written as the product's table
 //!   (`analyzer/src/family_classifier_table.rs`, read by `proctex::family_classifier`); it
@@ -52,41 +53,6 @@ use proctex::pattern::PatternKind;
 use proctex::retrieve::RANK_SIZE;
 use proctex::two_tone::two_tone;
 
-const THUMB: usize = 96;
-const COLS: usize = 8;
-
-fn sheet(list: &str, dir: &str, out: &str, start: usize, count: usize) {
-    let names: Vec<String> = std::fs::read_to_string(list)
-        .unwrap()
-        .lines()
-        .map(str::to_string)
-        .collect();
-    let names = &names[start.min(names.len())..(start + count).min(names.len())];
-    let rows = names.len().div_ceil(COLS);
-    let (w, h) = (COLS * (THUMB + 4), rows * (THUMB + 4));
-    let mut img = image::RgbImage::from_pixel(w as u32, h as u32, image::Rgb([255, 0, 255]));
-    for (i, n) in names.iter().enumerate() {
-        let photo = Photo::decode(&std::fs::read(format!("{dir}/{n}")).unwrap()).unwrap();
-        let side = photo.width.min(photo.height) as usize;
-        let (x0, y0) = (i % COLS * (THUMB + 4) + 2, i / COLS * (THUMB + 4) + 2);
-        for y in 0..THUMB {
-            for x in 0..THUMB {
-                let (sx, sy) = (x * side / THUMB, y * side / THUMB);
-                let c = photo.pixels[sy * photo.width as usize + sx];
-                let px = [0, 1, 2].map(|k| (c[k].clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0) as u8);
-                img.put_pixel((x0 + x) as u32, (y0 + y) as u32, image::Rgb(px));
-            }
-        }
-    }
-    img.save(out).unwrap();
-}
-
-/// The descriptor of a patch as the product's ranking queries it: reduced to at most
-/// [`RANK_SIZE`] a side (larger textures' quadrants were described at their own size before
-/// the third batch; the product never sees those scales), its two-tone structure map described;
-/// the luminance map's descriptor appended when `CORPUS_LAB_EXTRA` contains `lum` (measured, not
-/// kept: [`proctex::family_classifier::features`]), then the patch's cues ([`cues`]), which the
-/// product's classifier reads with the descriptor.
 fn describe(photo: &Photo) -> Descriptor {
     let reduced = photo.reduced(RANK_SIZE);
     let photo = reduced.as_ref().unwrap_or(photo);
@@ -262,6 +228,14 @@ struct Classifier {
     /// Each class's own Gaussian in the projected space (`CORPUS_LAB_QDA=ALPHA`, its shrinkage
     /// towards the pooled spread): the classes scored by quadratic discriminant.
     gaussians: Option<Vec<(Vec<f64>, f64)>>,
+    /// ln of each present class's share of the training textures.
+    log_prior: Vec<f64>,
+}
+
+thread_local! {
+    /// The class prior's weight on the distances and whether it orders the families only: none,
+    /// as in the product (`proctex::family_classifier`), unless `CORPUS_LAB_PRIORS` sweeps it.
+    static PRIOR: std::cell::Cell<(f64, bool)> = const { std::cell::Cell::new((0.0, false)) };
 }
 
 impl Classifier {
@@ -282,11 +256,17 @@ impl Classifier {
             .ok()
             .and_then(|v| v.parse::<f64>().ok())
             .map(|alpha| lab_common::lda::class_gaussians(&model, present.len(), alpha));
+        let total = textures.len() as f64;
+        let log_prior = present
+            .iter()
+            .map(|&c| (textures.iter().filter(|t| t.class == c).count() as f64 / total).ln())
+            .collect();
         Classifier {
             model,
             present,
             harmonics,
             gaussians,
+            log_prior,
         }
     }
 
@@ -325,7 +305,23 @@ impl Classifier {
                 .collect()
         };
         let (a, b) = (score(d), score(&d.swapped()));
-        a.iter().zip(&b).map(|(x, y)| x.min(*y)).collect()
+        let mut out: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x.min(*y)).collect();
+        let (scale, families_only) = PRIOR.with(|p| p.get());
+        if scale != 0.0 {
+            let noise = class_names().len() - 1;
+            let fam: Vec<usize> = (0..out.len())
+                .filter(|&i| self.present[i] != noise)
+                .collect();
+            let mean = fam.iter().map(|&i| self.log_prior[i]).sum::<f64>() / fam.len() as f64;
+            for i in 0..out.len() {
+                if families_only && self.present[i] == noise {
+                    continue;
+                }
+                let centre = if families_only { mean } else { 0.0 };
+                out[i] += -2.0 * scale * (self.log_prior[i] - centre);
+            }
+        }
+        out
     }
 
     /// The classes nearest first (either tone orientation of the query).
@@ -615,6 +611,10 @@ fn eval(labels: &str, dir: &str, dev: &str) {
     }
     let all: Vec<&Texture> = corpus.iter().collect();
     let c = Classifier::train(&all, names.len(), harmonics, ridge);
+    if let Ok(list) = std::env::var("CORPUS_LAB_PRIORS") {
+        prior_sweep(&list, &corpus, &dev_patches, &c, &names, harmonics, ridge);
+        return;
+    }
     // With `CORPUS_LAB_DEV_FOLDS=K`, each development photo is scored by a discriminant trained
     // on the corpus and the development photos of the other K − 1 folds (by photo).
     let dev_folds: usize = std::env::var("CORPUS_LAB_DEV_FOLDS")
@@ -704,75 +704,80 @@ fn eval(labels: &str, dir: &str, dev: &str) {
     }
 }
 
-/// Every DXT1/DXT5 DDS file in `dir` written to `out` as a PNG at most 512 wide.
-fn dds(dir: &str, out: &str) {
-    std::fs::create_dir_all(out).unwrap();
-    let mut n = 0;
-    for e in std::fs::read_dir(dir).unwrap() {
-        let path = e.unwrap().path();
-        let Some((side, px)) = lab_common::dds::decode_dds(&std::fs::read(&path).unwrap(), 512)
-        else {
-            continue;
+/// `CORPUS_LAB_PRIORS=S1,S2,…`: the class prior's weight on the distances (−2·S·ln of each class's
+/// share of the training textures; `f` before a value: the families' terms only, centred, the
+/// noise class's distance as it is), the corpus held out (4 folds) and the development set per
+/// weight: the nearest family, the label among the first three families, the noise class first.
+fn prior_sweep(
+    list: &str,
+    corpus: &[Texture],
+    dev: &[(lab_common::Patch, Descriptor)],
+    c: &Classifier,
+    names: &[&str],
+    harmonics: usize,
+    ridge: f64,
+) {
+    let noise = names.len() - 1;
+    let folds: Vec<Classifier> = (0..CORPUS_FOLDS)
+        .map(|f| {
+            let train: Vec<&Texture> = corpus
+                .iter()
+                .filter(|t| proctex::devset::fold_of(&t.file, CORPUS_FOLDS) != f)
+                .collect();
+            Classifier::train(&train, names.len(), harmonics, ridge)
+        })
+        .collect();
+    for item in list.split(',') {
+        let (fam_only, v) = match item.strip_prefix('f') {
+            Some(v) => (true, v),
+            None => (false, item),
         };
-        let mut img = image::RgbImage::new(side as u32, side as u32);
-        for (i, c) in px.iter().enumerate() {
-            let v = c.map(|x| (x * 255.0).round() as u8);
-            img.put_pixel((i % side) as u32, (i / side) as u32, image::Rgb(v));
+        let s: f64 = v.parse().unwrap();
+        PRIOR.with(|p| p.set((s, fam_only)));
+        let fams = |order: &[usize]| -> Vec<usize> {
+            order.iter().copied().filter(|&k| k != noise).collect()
+        };
+        let (mut right, mut top3f, mut ns, mut kept, mut nt) = (0, 0, 0, 0, 0);
+        for t in corpus {
+            let cl = &folds[proctex::devset::fold_of(&t.file, CORPUS_FOLDS)];
+            for d in &t.quadrants {
+                let order = cl.order(d);
+                if t.class == noise {
+                    nt += 1;
+                    kept += (order[0] == noise) as usize;
+                } else {
+                    ns += 1;
+                    let f = fams(&order);
+                    right += (f[0] == t.class) as usize;
+                    top3f += f.iter().take(3).any(|&k| k == t.class) as usize;
+                }
+            }
         }
-        let file = path.file_name().unwrap().to_string_lossy().to_string();
-        let name = [".dds.cached.dds", ".png.cached.dds", ".dds"]
-            .iter()
-            .find_map(|e| file.strip_suffix(e))
-            .unwrap_or(&file)
-            .to_string();
-        img.save(format!("{out}/{name}.png")).unwrap();
-        n += 1;
-    }
-    eprintln!("{n} textures decoded");
-}
-
-/// The labelled textures of LABELS (in DIR) as a set for `proctex fidelity --set OUT`: each
-/// reduced to at most 512 pixels a side (quadrants at most 256², as the development set's) and
-/// written as OUT/NAME.png, with OUT/manifest.tsv (category stochastic for `noise`, structured
-/// otherwise; the label as the families; the package as material and licence).
-fn set(labels: &str, dir: &str, out: &str) {
-    std::fs::create_dir_all(out).unwrap();
-    let mut manifest = String::from("file\tcategory\tmaterial\tfamilies\tlicense\torigin\n");
-    for line in std::fs::read_to_string(labels).unwrap().lines() {
-        let mut it = line.split('\t');
-        let (file, family) = (it.next().unwrap_or(""), it.next().unwrap_or("").trim());
-        if line.starts_with('#') || family.is_empty() {
-            continue;
+        let (mut dr, mut dt3, mut dn, mut first, mut dk, mut dnt) = (0, 0, 0, 0, 0, 0);
+        for (p, d) in dev {
+            let order = c.order(d);
+            let lab = |k: usize| p.labels.iter().any(|l| l == names[k]);
+            if p.structured {
+                dn += 1;
+                let f = fams(&order);
+                dr += lab(f[0]) as usize;
+                dt3 += f.iter().take(3).any(|&k| lab(k)) as usize;
+                first += lab(order[0]) as usize;
+            } else {
+                dnt += 1;
+                dk += (order[0] == noise) as usize;
+            }
         }
-        let package = it.next().unwrap_or("").trim();
-        let stem = std::path::Path::new(file)
-            .file_stem()
-            .unwrap()
-            .to_string_lossy();
-        let name = format!("{}.png", stem.replace(' ', "_"));
-        let img = image::open(format!("{dir}/{file}")).unwrap().to_rgb8();
-        let (w, h) = (img.width(), img.height());
-        let img = if w.max(h) > 512 {
-            let (nw, nh) = ((512 * w / w.max(h)).max(1), (512 * h / w.max(h)).max(1));
-            image::imageops::resize(&img, nw, nh, image::imageops::FilterType::Triangle)
-        } else {
-            img
-        };
-        img.save(format!("{out}/{name}")).unwrap();
-        let category = if family == "noise" {
-            "stochastic"
-        } else {
-            "structured"
-        };
-        manifest += &format!("{name}\t{category}\t{package}\t{family}\t{package}\t{file}\n");
+        println!(
+            "prior {item}: corpus held out family {right}/{ns} family-top3 {top3f}/{ns} noise kept {kept}/{nt} | dev family {dr}/{dn} family-top3 {dt3}/{dn} first {first}/{dn} noise kept {dk}/{dnt}"
+        );
     }
-    std::fs::write(format!("{out}/manifest.tsv"), manifest).unwrap();
 }
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     match a[1].as_str() {
-        "sheet" => sheet(
+        "sheet" => lab_common::corpus_files::sheet(
             &a[2],
             &a[3],
             &a[4],
@@ -780,8 +785,8 @@ fn main() {
             a[6].parse().unwrap(),
         ),
         "eval" => eval(&a[2], &a[3], &a[4]),
-        "dds" => dds(&a[2], &a[3]),
-        "set" => set(&a[2], &a[3], &a[4]),
+        "dds" => lab_common::corpus_files::dds(&a[2], &a[3]),
+        "set" => lab_common::corpus_files::set(&a[2], &a[3], &a[4]),
         "table" => table(&a[2], &a[3], &a[4]),
         _ => panic!("sheet | eval | dds | set | table"),
     }

@@ -14,6 +14,9 @@ pub mod ranked;
 // Only the corpus laboratory decodes DDS textures.
 #[allow(dead_code)]
 pub mod dds;
+// Only the corpus laboratory writes contact sheets, decoded terrains and corpus sets.
+#[allow(dead_code)]
+pub mod corpus_files;
 
 use proctex::cues::blur;
 use proctex::db::sample;

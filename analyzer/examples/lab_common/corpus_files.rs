@@ -1,0 +1,106 @@
+//! The corpus laboratory's file tools (`corpus_lab sheet | dds | set`): contact sheets for
+//! labelling, 0 A.D.'s DDS terrains decoded, and a labelled corpus written as a set for
+//! `proctex fidelity --set`.
+
+use proctex::input::Photo;
+
+const THUMB: usize = 96;
+const COLS: usize = 8;
+
+/// The textures LIST[START..START+COUNT] (file names in DIR) as a PNG contact sheet, 8 per row,
+/// 96 px each, row-major: for labelling by eye.
+pub fn sheet(list: &str, dir: &str, out: &str, start: usize, count: usize) {
+    let names: Vec<String> = std::fs::read_to_string(list)
+        .unwrap()
+        .lines()
+        .map(str::to_string)
+        .collect();
+    let names = &names[start.min(names.len())..(start + count).min(names.len())];
+    let rows = names.len().div_ceil(COLS);
+    let (w, h) = (COLS * (THUMB + 4), rows * (THUMB + 4));
+    let mut img = image::RgbImage::from_pixel(w as u32, h as u32, image::Rgb([255, 0, 255]));
+    for (i, n) in names.iter().enumerate() {
+        let photo = Photo::decode(&std::fs::read(format!("{dir}/{n}")).unwrap()).unwrap();
+        let side = photo.width.min(photo.height) as usize;
+        let (x0, y0) = (i % COLS * (THUMB + 4) + 2, i / COLS * (THUMB + 4) + 2);
+        for y in 0..THUMB {
+            for x in 0..THUMB {
+                let (sx, sy) = (x * side / THUMB, y * side / THUMB);
+                let c = photo.pixels[sy * photo.width as usize + sx];
+                let px = [0, 1, 2].map(|k| (c[k].clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0) as u8);
+                img.put_pixel((x0 + x) as u32, (y0 + y) as u32, image::Rgb(px));
+            }
+        }
+    }
+    img.save(out).unwrap();
+}
+
+/// The descriptor of a patch as the product's ranking queries it: reduced to at most
+/// [`RANK_SIZE`] a side (larger textures' quadrants were described at their own size before
+/// the third batch; the product never sees those scales), its two-tone structure map described;
+/// the luminance map's descriptor appended when `CORPUS_LAB_EXTRA` contains `lum` (measured, not
+/// kept: [`proctex::family_classifier::features`]), then the patch's cues ([`cues`]), which the
+/// product's classifier reads with the descriptor.
+/// Every DXT1/DXT5 DDS file in `dir` written to `out` as a PNG at most 512 wide.
+pub fn dds(dir: &str, out: &str) {
+    std::fs::create_dir_all(out).unwrap();
+    let mut n = 0;
+    for e in std::fs::read_dir(dir).unwrap() {
+        let path = e.unwrap().path();
+        let Some((side, px)) = super::dds::decode_dds(&std::fs::read(&path).unwrap(), 512) else {
+            continue;
+        };
+        let mut img = image::RgbImage::new(side as u32, side as u32);
+        for (i, c) in px.iter().enumerate() {
+            let v = c.map(|x| (x * 255.0).round() as u8);
+            img.put_pixel((i % side) as u32, (i / side) as u32, image::Rgb(v));
+        }
+        let file = path.file_name().unwrap().to_string_lossy().to_string();
+        let name = [".dds.cached.dds", ".png.cached.dds", ".dds"]
+            .iter()
+            .find_map(|e| file.strip_suffix(e))
+            .unwrap_or(&file)
+            .to_string();
+        img.save(format!("{out}/{name}.png")).unwrap();
+        n += 1;
+    }
+    eprintln!("{n} textures decoded");
+}
+
+/// The labelled textures of LABELS (in DIR) as a set for `proctex fidelity --set OUT`: each
+/// reduced to at most 512 pixels a side (quadrants at most 256², as the development set's) and
+/// written as OUT/NAME.png, with OUT/manifest.tsv (category stochastic for `noise`, structured
+/// otherwise; the label as the families; the package as material and licence).
+pub fn set(labels: &str, dir: &str, out: &str) {
+    std::fs::create_dir_all(out).unwrap();
+    let mut manifest = String::from("file\tcategory\tmaterial\tfamilies\tlicense\torigin\n");
+    for line in std::fs::read_to_string(labels).unwrap().lines() {
+        let mut it = line.split('\t');
+        let (file, family) = (it.next().unwrap_or(""), it.next().unwrap_or("").trim());
+        if line.starts_with('#') || family.is_empty() {
+            continue;
+        }
+        let package = it.next().unwrap_or("").trim();
+        let stem = std::path::Path::new(file)
+            .file_stem()
+            .unwrap()
+            .to_string_lossy();
+        let name = format!("{}.png", stem.replace(' ', "_"));
+        let img = image::open(format!("{dir}/{file}")).unwrap().to_rgb8();
+        let (w, h) = (img.width(), img.height());
+        let img = if w.max(h) > 512 {
+            let (nw, nh) = ((512 * w / w.max(h)).max(1), (512 * h / w.max(h)).max(1));
+            image::imageops::resize(&img, nw, nh, image::imageops::FilterType::Triangle)
+        } else {
+            img
+        };
+        img.save(format!("{out}/{name}")).unwrap();
+        let category = if family == "noise" {
+            "stochastic"
+        } else {
+            "structured"
+        };
+        manifest += &format!("{name}\t{category}\t{package}\t{family}\t{package}\t{file}\n");
+    }
+    std::fs::write(format!("{out}/manifest.tsv"), manifest).unwrap();
+}
