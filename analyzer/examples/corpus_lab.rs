@@ -53,6 +53,12 @@ use proctex::pattern::PatternKind;
 use proctex::retrieve::RANK_SIZE;
 use proctex::two_tone::two_tone;
 
+/// The descriptor of a patch as the product's ranking queries it: reduced to at most
+/// [`RANK_SIZE`] a side (larger textures' quadrants were described at their own size before
+/// the third batch; the product never sees those scales), its two-tone structure map described;
+/// the luminance map's descriptor appended when `CORPUS_LAB_EXTRA` contains `lum` (measured, not
+/// kept: [`proctex::family_classifier::features`]), then the patch's cues ([`cues`]), which the
+/// product's classifier reads with the descriptor.
 fn describe(photo: &Photo) -> Descriptor {
     let reduced = photo.reduced(RANK_SIZE);
     let photo = reduced.as_ref().unwrap_or(photo);
@@ -345,35 +351,66 @@ const SETTINGS: [(usize, f64); 8] = [
 ];
 const CORPUS_FOLDS: usize = 4;
 
+/// The discriminant trained without each of the corpus's [`CORPUS_FOLDS`] folds (by texture).
+fn fold_classifiers(corpus: &[Texture], classes: usize, setting: (usize, f64)) -> Vec<Classifier> {
+    (0..CORPUS_FOLDS)
+        .map(|f| {
+            let train: Vec<&Texture> = corpus
+                .iter()
+                .filter(|t| proctex::devset::fold_of(&t.file, CORPUS_FOLDS) != f)
+                .collect();
+            Classifier::train(&train, classes, setting.0, setting.1)
+        })
+        .collect()
+}
+
+/// Counts over the corpus's quadrants, each ranked by its fold's classifier.
+#[derive(Default)]
+struct HeldOut {
+    structured: usize,
+    /// Structured quadrants whose nearest family is the label.
+    family: usize,
+    /// Structured quadrants whose label is among the first three families.
+    family_top3: usize,
+    stochastic: usize,
+    /// Stochastic quadrants with the noise class first.
+    noise_kept: usize,
+}
+
+fn held_out(corpus: &[Texture], folds: &[Classifier], noise: usize) -> HeldOut {
+    let mut h = HeldOut::default();
+    for t in corpus {
+        let c = &folds[proctex::devset::fold_of(&t.file, CORPUS_FOLDS)];
+        for d in &t.quadrants {
+            let order = c.order(d);
+            if t.class == noise {
+                h.stochastic += 1;
+                h.noise_kept += (order[0] == noise) as usize;
+            } else {
+                h.structured += 1;
+                let families: Vec<usize> = order.into_iter().filter(|&k| k != noise).collect();
+                h.family += (families[0] == t.class) as usize;
+                h.family_top3 += families[..3].contains(&t.class) as usize;
+            }
+        }
+    }
+    h
+}
+
 /// The setting chosen by cross-validation over the corpus's textures alone (by texture,
 /// [`CORPUS_FOLDS`] folds): the most structured quadrants whose nearest family is the label.
 fn choose_setting(corpus: &[Texture], names: &[&str]) -> (usize, f64) {
     let noise = names.len() - 1;
     let mut best = (0usize, SETTINGS[0]);
     for &(harmonics, ridge) in &SETTINGS {
-        let (mut right, mut structured, mut kept, mut stochastic) = (0, 0, 0, 0);
-        for f in 0..CORPUS_FOLDS {
-            let fold = |t: &Texture| proctex::devset::fold_of(&t.file, CORPUS_FOLDS) == f;
-            let train: Vec<&Texture> = corpus.iter().filter(|t| !fold(t)).collect();
-            let c = Classifier::train(&train, names.len(), harmonics, ridge);
-            for t in corpus.iter().filter(|t| fold(t)) {
-                for d in &t.quadrants {
-                    let order = c.order(d);
-                    if t.class == noise {
-                        stochastic += 1;
-                        kept += (order[0] == noise) as usize;
-                    } else {
-                        structured += 1;
-                        right += (order.iter().find(|&&k| k != noise) == Some(&t.class)) as usize;
-                    }
-                }
-            }
-        }
+        let folds = fold_classifiers(corpus, names.len(), (harmonics, ridge));
+        let h = held_out(corpus, &folds, noise);
         println!(
-            "corpus, {CORPUS_FOLDS} folds held out: harmonics {harmonics} ridge {ridge}: family {right}/{structured}, noise kept {kept}/{stochastic}"
+            "corpus, {CORPUS_FOLDS} folds held out: harmonics {harmonics} ridge {ridge}: family {}/{}, noise kept {}/{}",
+            h.family, h.structured, h.noise_kept, h.stochastic
         );
-        if right > best.0 {
-            best = (right, (harmonics, ridge));
+        if h.family > best.0 {
+            best = (h.family, (harmonics, ridge));
         }
     }
     best.1
@@ -390,18 +427,15 @@ const UNFAMILIAR_QUANTILE: f64 = 0.95;
 /// its fold (the setting's [`CORPUS_FOLDS`]-fold cross-validation), sorted: how far real
 /// textures the classifier has not seen fall from its classes.
 fn held_out_distances(corpus: &[Texture], names: &[&str], setting: (usize, f64)) -> Vec<f64> {
-    let mut out = Vec::new();
-    for f in 0..CORPUS_FOLDS {
-        let fold = |t: &Texture| proctex::devset::fold_of(&t.file, CORPUS_FOLDS) == f;
-        let train: Vec<&Texture> = corpus.iter().filter(|t| !fold(t)).collect();
-        let c = Classifier::train(&train, names.len(), setting.0, setting.1);
-        for t in corpus.iter().filter(|t| fold(t)) {
-            for d in &t.quadrants {
-                let nearest = c.distances(d).into_iter().fold(f64::INFINITY, f64::min);
-                out.push(nearest);
-            }
-        }
-    }
+    let folds = fold_classifiers(corpus, names.len(), setting);
+    let mut out: Vec<f64> = corpus
+        .iter()
+        .flat_map(|t| {
+            let c = &folds[proctex::devset::fold_of(&t.file, CORPUS_FOLDS)];
+            let nearest = |d| c.distances(d).into_iter().fold(f64::INFINITY, f64::min);
+            t.quadrants.iter().map(nearest)
+        })
+        .collect();
     out.sort_by(f64::total_cmp);
     out
 }
@@ -612,7 +646,7 @@ fn eval(labels: &str, dir: &str, dev: &str) {
     let all: Vec<&Texture> = corpus.iter().collect();
     let c = Classifier::train(&all, names.len(), harmonics, ridge);
     if let Ok(list) = std::env::var("CORPUS_LAB_PRIORS") {
-        prior_sweep(&list, &corpus, &dev_patches, &c, &names, harmonics, ridge);
+        prior_sweep(&list, &corpus, &dev_patches, &c, &names, (harmonics, ridge));
         return;
     }
     // With `CORPUS_LAB_DEV_FOLDS=K`, each development photo is scored by a discriminant trained
@@ -714,19 +748,10 @@ fn prior_sweep(
     dev: &[(lab_common::Patch, Descriptor)],
     c: &Classifier,
     names: &[&str],
-    harmonics: usize,
-    ridge: f64,
+    setting: (usize, f64),
 ) {
     let noise = names.len() - 1;
-    let folds: Vec<Classifier> = (0..CORPUS_FOLDS)
-        .map(|f| {
-            let train: Vec<&Texture> = corpus
-                .iter()
-                .filter(|t| proctex::devset::fold_of(&t.file, CORPUS_FOLDS) != f)
-                .collect();
-            Classifier::train(&train, names.len(), harmonics, ridge)
-        })
-        .collect();
+    let folds = fold_classifiers(corpus, names.len(), setting);
     for item in list.split(',') {
         let (fam_only, v) = match item.strip_prefix('f') {
             Some(v) => (true, v),
@@ -734,32 +759,14 @@ fn prior_sweep(
         };
         let s: f64 = v.parse().unwrap();
         PRIOR.with(|p| p.set((s, fam_only)));
-        let fams = |order: &[usize]| -> Vec<usize> {
-            order.iter().copied().filter(|&k| k != noise).collect()
-        };
-        let (mut right, mut top3f, mut ns, mut kept, mut nt) = (0, 0, 0, 0, 0);
-        for t in corpus {
-            let cl = &folds[proctex::devset::fold_of(&t.file, CORPUS_FOLDS)];
-            for d in &t.quadrants {
-                let order = cl.order(d);
-                if t.class == noise {
-                    nt += 1;
-                    kept += (order[0] == noise) as usize;
-                } else {
-                    ns += 1;
-                    let f = fams(&order);
-                    right += (f[0] == t.class) as usize;
-                    top3f += f.iter().take(3).any(|&k| k == t.class) as usize;
-                }
-            }
-        }
+        let h = held_out(corpus, &folds, noise);
         let (mut dr, mut dt3, mut dn, mut first, mut dk, mut dnt) = (0, 0, 0, 0, 0, 0);
         for (p, d) in dev {
             let order = c.order(d);
             let lab = |k: usize| p.labels.iter().any(|l| l == names[k]);
             if p.structured {
                 dn += 1;
-                let f = fams(&order);
+                let f: Vec<usize> = order.iter().copied().filter(|&k| k != noise).collect();
                 dr += lab(f[0]) as usize;
                 dt3 += f.iter().take(3).any(|&k| lab(k)) as usize;
                 first += lab(order[0]) as usize;
@@ -769,7 +776,12 @@ fn prior_sweep(
             }
         }
         println!(
-            "prior {item}: corpus held out family {right}/{ns} family-top3 {top3f}/{ns} noise kept {kept}/{nt} | dev family {dr}/{dn} family-top3 {dt3}/{dn} first {first}/{dn} noise kept {dk}/{dnt}"
+            "prior {item}: corpus held out family {}/{n} family-top3 {}/{n} noise kept {}/{} | dev family {dr}/{dn} family-top3 {dt3}/{dn} first {first}/{dn} noise kept {dk}/{dnt}",
+            h.family,
+            h.family_top3,
+            h.noise_kept,
+            h.stochastic,
+            n = h.structured
         );
     }
 }

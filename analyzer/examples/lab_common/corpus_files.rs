@@ -35,12 +35,6 @@ pub fn sheet(list: &str, dir: &str, out: &str, start: usize, count: usize) {
     img.save(out).unwrap();
 }
 
-/// The descriptor of a patch as the product's ranking queries it: reduced to at most
-/// [`RANK_SIZE`] a side (larger textures' quadrants were described at their own size before
-/// the third batch; the product never sees those scales), its two-tone structure map described;
-/// the luminance map's descriptor appended when `CORPUS_LAB_EXTRA` contains `lum` (measured, not
-/// kept: [`proctex::family_classifier::features`]), then the patch's cues ([`cues`]), which the
-/// product's classifier reads with the descriptor.
 /// Every DXT1/DXT5 DDS file in `dir` written to `out` as a PNG at most 512 wide.
 pub fn dds(dir: &str, out: &str) {
     std::fs::create_dir_all(out).unwrap();
