@@ -175,7 +175,24 @@ fn augmented(photo: &Photo) -> Vec<Descriptor> {
     }
 }
 
+/// The labelled textures, without those of a class whose every texture is a variant of one
+/// ([`lab_common::corpus_files::classes_of_one_texture`]).
 fn load_corpus(labels: &str, dir: &str, names: &[&str]) -> Vec<Texture> {
+    let mut corpus = load_labelled(labels, dir, names);
+    let labelled: Vec<(&str, usize)> = corpus.iter().map(|t| (t.file.as_str(), t.class)).collect();
+    let single = lab_common::corpus_files::classes_of_one_texture(&labelled, names.len());
+    for &c in &single {
+        let n = corpus.iter().filter(|t| t.class == c).count();
+        println!(
+            "not trained: {} ({n} textures, every one a variant of one)",
+            names[c]
+        );
+    }
+    corpus.retain(|t| !single.contains(&t.class));
+    corpus
+}
+
+fn load_labelled(labels: &str, dir: &str, names: &[&str]) -> Vec<Texture> {
     let mut out = Vec::new();
     for line in std::fs::read_to_string(labels).unwrap().lines() {
         if line.starts_with('#') {

@@ -321,7 +321,7 @@ pub struct Suggester {
     starts: Vec<Vec<Match>>,
     /// The families (in `starts` order) in the list's order before the fitted ones are
     /// reordered: the classifier's families nearest first ([`crate::family_classifier`]), then
-    /// those it has no example of (turbulence, rings) by retrieval distance. The first
+    /// those it has no example of (turbulence, rings, perlin) by retrieval distance. The first
     /// [`RENDER_ORDERED`] are refined and fitted to order the list.
     order: Vec<usize>,
     /// Each family's squared distance to its class in the family classifier, in `starts`
