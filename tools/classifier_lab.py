@@ -3,7 +3,7 @@ r"""Other classifiers and other features for the family classifier, measured out
 (laboratory; docs/devset.md, "A two-class gate, the noise model's margin, a floor on the
 lattices' scale, other classifiers and features" and "Scattering features").
 
-The product's classifier is Fisher's linear discriminant (`analyzer/examples/corpus_lab.rs`,
+The product's classifier is Fisher's linear discriminant (`analyzer/examples/corpus_lab/`,
 `proctex::family_classifier`). This script reads the features `corpus_lab eval` writes with
 `CORPUS_LAB_FEATURES=PATH` (one row per training quadrant and development patch) and scores
 other classifiers the same way `corpus_lab eval` scores the discriminant: trained on the corpus

@@ -15,7 +15,7 @@
 //! first 335 alone; 60 ± 7 over corpora of the first two batches resampled with replacement).
 //! Its setting (orientation harmonics, ridge) was chosen by 4-fold cross-validation over the
 //! corpus alone; the
-//! development set was never trained on (`analyzer/examples/corpus_lab.rs`, `table`, writes
+//! development set was never trained on (`analyzer/examples/corpus_lab/`, `table`, writes
 //! the table; docs/devset.md, "A family classifier trained on real textures").
 //!
 //! The corpus has no example of turbulence or rings, and its perlin examples are four variants
