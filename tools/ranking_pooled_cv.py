@@ -26,6 +26,8 @@ Caveat: the corpus is the classifier's training set, where its class distances a
 that pool flatters any weight of the classifier's opinion; sets it never saw say more.
 
 Usage: tools/ranking_pooled_cv.py weight|noise-margin|render-null DEV_RUN CORPUS_RUN [UNSEEN_RUN ...]
+       [--runs λ,m,τ,n]   the settings the runs were made with (default: those of docs/devset.md's
+                          runs, 0.02,0.2,9.25,1.2364; the product's since: 0.02,0.35,9.25,1.4801)
 """
 import math
 import sys
@@ -105,8 +107,9 @@ def first_candidate(r, lam, m):
     return best, min(own - (render[best] - render[nearest]), own)
 
 
-def chosen_at(r, setting, nearer=NEARER, unknown=None):
+def chosen_at(r, setting, nearer=None, unknown=None):
     lam, m, tau = setting
+    nearer = NEARER if nearer is None else nearer
     first, beyond = first_candidate(r, lam, m)
     if beyond is not None and beyond > tau:
         return r["nearest"]
@@ -143,7 +146,21 @@ class Rule:
                                                       else "%.3f" % setting[2],))
 
 
+def set_runs(text):
+    """The runs' settings from `--runs λ,m,τ,n` (the nearer-render margin as well, replayed at the
+    runs' value)."""
+    global CLASSIFIER_WEIGHT, NOISE_MODEL_MARGIN, RENDER_NULL_MARGIN, NEARER_RUNS, NEARER, RUNS
+    lam, m, tau, n = (float(x) for x in text.split(","))
+    CLASSIFIER_WEIGHT, NOISE_MODEL_MARGIN, RENDER_NULL_MARGIN = lam, m, tau
+    NEARER_RUNS = NEARER = n
+    RUNS = (lam, m, tau)
+
+
 def main():
+    if "--runs" in sys.argv:
+        k = sys.argv.index("--runs")
+        set_runs(sys.argv[k + 1])
+        del sys.argv[k:k + 2]
     if len(sys.argv) < 4 or sys.argv[1] not in ("weight", "noise-margin", "render-null"):
         sys.exit(__doc__)
     dev, corpus = rows_of(sys.argv[2]), rows_of(sys.argv[3])

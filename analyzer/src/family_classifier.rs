@@ -14,14 +14,15 @@
 //! its features (65 without them; 56 with the first two batches, 539 textures; 70 with the
 //! first 335 alone; 60 ± 7 over corpora of the first two batches resampled with replacement).
 //! Its setting (orientation harmonics, ridge) was chosen by 4-fold cross-validation over the
-//! corpus alone; the
-//! development set was never trained on (`analyzer/examples/corpus_lab/`, `table`, writes
+//! corpus alone, the folds drawn by texture stem so that a texture's variants are held out
+//! together (by file they leaked: the held-out nearest family 595 of 892 by file, 550 by stem);
+//! the development set was never trained on (`analyzer/examples/corpus_lab/`, `table`, writes
 //! the table; docs/devset.md, "A family classifier trained on real textures").
 //!
 //! The corpus has no example of turbulence or rings, and its perlin examples are four variants
 //! of one lava texture, which `corpus_lab` does not train a class on (a class of one texture:
-//! held out on the corpus's folds, the other families' nearest family 589 → 595 of 892 without
-//! it, the noise class kept 1259 → 1264 of 1452). The classifier knows the other six families
+//! held out on the corpus's folds by file, the other families' nearest family 589 → 595 of 892
+//! without it, the noise class kept 1259 → 1264 of 1452). The classifier knows the other six families
 //! and the noise class ([`known`]); the ranking lists the three it does not know last (offered,
 //! fitted on request; [`crate::retrieve`]). Fitting the one nearest by structure
 //! distance with the classifier's three where it was nearer than them was measured and not kept:

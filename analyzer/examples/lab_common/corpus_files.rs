@@ -99,21 +99,29 @@ pub fn set(labels: &str, dir: &str, out: &str) {
     std::fs::write(format!("{out}/manifest.tsv"), manifest).unwrap();
 }
 
-/// A texture's name up to its first digit: variants of one texture (`LavaTest03` …
-/// `LavaTest06`, `wickedwood02` … `wickedwood08`) share it.
-fn stem(file: &str) -> &str {
+/// A texture's stem: its folder (the part of the name before the last `__`, as
+/// `tools/corpus/extract.py` writes it) and its file name up to the file name's first digit.
+/// Variants of one texture (`LavaTest03` … `LavaTest06`, `re__wicked__wickedwood02` …
+/// `wickedwood08`, `evil1_floors__floortile1` and `floortile1bbrown`) share it. The folder is kept
+/// whole, digits included: Nexuiz's folders are numbered (`evil1_floors`, `evil2_basefloor`), and
+/// cutting the whole name at its first digit put all 83 of its textures in one stem.
+pub fn stem(file: &str) -> (&str, &str) {
     let name = file.rsplit_once('.').map_or(file, |(n, _)| n);
-    name.find(|c: char| c.is_ascii_digit())
-        .map_or(name, |i| &name[..i])
+    let (folder, name) = name.rsplit_once("__").unwrap_or(("", name));
+    let cut = name
+        .find(|c: char| c.is_ascii_digit())
+        .unwrap_or(name.len());
+    (folder, &name[..cut])
 }
 
 /// The classes (of `classes`) whose every labelled texture (`(file, class)`) is a variant of one
 /// ([`stem`]): such a class is one texture, not a class, and `corpus_lab` does not train it. The
 /// corpus's perlin class was four variants of one 0 A.D. lava texture (`LavaTest03`–`06`); its
-/// quadrants were "recognised" on the corpus's folds only because the variants fell in different
-/// folds (13 of 16 held out), and it drew 10 held-out quadrants of other families to itself.
-/// Without it the other families' held-out nearest family went 589 → 595 of 892 and the noise
-/// class kept 1259 → 1264 of 1452 (the same setting chosen). Noticed on the development set (a
+/// quadrants were "recognised" on the corpus's folds, then drawn by file, only because the variants
+/// fell in different folds (13 of 16 held out), and it drew 10 held-out quadrants of other families
+/// to itself. Without it the other families' held-out nearest family went 589 → 595 of 892 and the
+/// noise class kept 1259 → 1264 of 1452 (the same setting chosen; the folds are drawn by stem
+/// since, which holds a texture's variants out together). Noticed on the development set (a
 /// rubble wall's nearest class was perlin), decided on the corpus's folds (docs/devset.md, "A
 /// class of one texture").
 pub fn classes_of_one_texture(labelled: &[(&str, usize)], classes: usize) -> Vec<usize> {
