@@ -125,8 +125,8 @@ def main():
         sys.exit(__doc__)
     runs = [args[0], args[1]] + args[3:]
     rows = [rows_of(run, labs[i] if labs else None) for i, run in enumerate(runs)]
-    dev, corpus, unseen = rows[0], rows[1], list(zip(args[3:], rows[2:]))
-    pools = [(dev, pooled_cv.sizes_of(dev)), (corpus, pooled_cv.manifest_sizes(args[2]))]
+    dev, corpus, unseen = rows[0], pooled_cv.by_stem(rows[1]), list(zip(args[3:], rows[2:]))
+    pools = [(dev, pooled_cv.sizes_of(dev)), (corpus, pooled_cv.manifest_sizes(args[2], stem=True))]
     cands = candidates(pools, bool(labs))
     for name, rs in [("development set", dev), ("corpus", corpus)] + unseen:
         d = [r for r in rs if r["decided"]]

@@ -57,7 +57,7 @@ class Rule:
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
-    dev, corpus = rows_of(sys.argv[1]), rows_of(sys.argv[2])
+    dev, corpus = rows_of(sys.argv[1]), pooled_cv.by_stem(rows_of(sys.argv[2]))
     unseen = [(run, rows_of(run)) for run in sys.argv[3:]]
     pools = [(dev, pooled_cv.sizes_of(dev)), (corpus, pooled_cv.sizes_of(corpus))]
     at = sorted({r["margin"] for rows, _ in pools for r in rows if Rule.relevant(r)})

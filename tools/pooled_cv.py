@@ -6,8 +6,10 @@ nearer_render_pooled_cv.py, which say how their rule is replayed from a run.
 Criterion, fixed before any fold was scored: the sum over the training pools of the structured
 labelled rate and the stochastic served rate (each pool weighs as much as the other, and in each
 a structured quadrant and a stochastic one by their class's size: the issue judges both rates).
-Folds: 4 by file (devset::fold_of) within each pool; a held-out fold of every pool is scored with
-the setting chosen on the other three of all. Ties: the setting that moves the fewest training
+Folds: 4 within each pool by file (devset::fold_of), except the training corpus's, drawn by
+texture stem (`by_stem`, as corpus_lab's folds: a texture's variants held out together; by file
+they sat on both sides of a fold, docs/devset.md "Folds by texture stem"); a held-out fold of
+every pool is scored with the setting chosen on the other three of all. Ties: the setting that moves the fewest training
 quadrants away from the run's choices' rule-free state (the rule's `moved`), then the first.
 
 A rule is an object with:
@@ -19,25 +21,49 @@ A rule is an object with:
   show(cand) -> the setting in words.
 Rows are dicts with at least `file`.
 """
+import re
+
 from devset_occam_cv import fold_of
 
 FOLDS = 4
+
+
+def stem_key(file):
+    """A corpus texture's stem as corpus_lab's `lab_common::corpus_files::stem` and `corpus_fold`
+    hash it: the folder part of the name (before the last `__`) kept whole, and the file name up to
+    its first digit."""
+    name = file.rsplit(".", 1)[0]
+    folder, _, name = name.rpartition("__")
+    m = re.search(r"\d", name)
+    return folder + "__" + (name[:m.start()] if m else name)
+
+
+def by_stem(rows):
+    """The training corpus's rows, each to be folded by its texture's stem."""
+    for r in rows:
+        r["fold_key"] = stem_key(r["file"])
+    return rows
+
+
+def row_fold(r):
+    return fold_of(r.get("fold_key", r["file"]), FOLDS)
 
 
 def sizes_of(rows):
     """Structured and stochastic quadrants by fold."""
     s = [[0, 0] for _ in range(FOLDS)]
     for r in rows:
-        s[fold_of(r["file"], FOLDS)][r["labels"] == ["noise"]] += 1
+        s[row_fold(r)][r["labels"] == ["noise"]] += 1
     return s
 
 
-def manifest_sizes(path):
-    """Structured and stochastic quadrants by fold of a whole set, from its manifest.tsv."""
+def manifest_sizes(path, stem=False):
+    """Structured and stochastic quadrants by fold of a whole set, from its manifest.tsv (folded by
+    texture stem with `stem`, as `by_stem`'s rows)."""
     s = [[0, 0] for _ in range(FOLDS)]
     for line in open(path).read().splitlines()[1:]:
         f = line.split("\t")
-        s[fold_of(f[0], FOLDS)][f[1] == "stochastic"] += 4
+        s[fold_of(stem_key(f[0]) if stem else f[0], FOLDS)][f[1] == "stochastic"] += 4
     return s
 
 
@@ -57,7 +83,7 @@ def tally_first(rows, first, served_ok="measured_ok"):
 
 
 def in_folds(rows, folds):
-    return [r for r in rows if fold_of(r["file"], FOLDS) in folds]
+    return [r for r in rows if row_fold(r) in folds]
 
 
 def criterion(rule, pools, folds, cand, counts=None):

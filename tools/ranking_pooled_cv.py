@@ -163,7 +163,7 @@ def main():
         del sys.argv[k:k + 2]
     if len(sys.argv) < 4 or sys.argv[1] not in ("weight", "noise-margin", "render-null"):
         sys.exit(__doc__)
-    dev, corpus = rows_of(sys.argv[2]), rows_of(sys.argv[3])
+    dev, corpus = rows_of(sys.argv[2]), pooled_cv.by_stem(rows_of(sys.argv[3]))
     unseen = [(run, rows_of(run)) for run in sys.argv[4:]]
     grid, reference = settings(sys.argv[1], dev + corpus)
     rule = Rule(reference)
