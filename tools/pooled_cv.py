@@ -9,8 +9,9 @@ a structured quadrant and a stochastic one by their class's size: the issue judg
 Folds: 4 within each pool by file (devset::fold_of), except the training corpus's, drawn by
 texture stem (`by_stem`, as corpus_lab's folds: a texture's variants held out together; by file
 they sat on both sides of a fold, docs/devset.md "Folds by texture stem"); a held-out fold of
-every pool is scored with the setting chosen on the other three of all. Ties: the setting that moves the fewest training
-quadrants away from the run's choices' rule-free state (the rule's `moved`), then the first.
+every pool is scored with the setting chosen on the other three of all. Ties: the setting that
+moves the fewest training quadrants away from the run's choices' rule-free state (the rule's
+`moved`), then the first.
 
 A rule is an object with:
   tally(rows, cand) -> (structured labelled, stochastic served) of `rows` under setting `cand`;

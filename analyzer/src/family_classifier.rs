@@ -22,9 +22,9 @@
 //! The corpus has no example of turbulence or rings, and its perlin examples are four variants
 //! of one lava texture, which `corpus_lab` does not train a class on (a class of one texture:
 //! held out on the corpus's folds by file, the other families' nearest family 589 → 595 of 892
-//! without it, the noise class kept 1259 → 1264 of 1452). The classifier knows the other six families
-//! and the noise class ([`known`]); the ranking lists the three it does not know last (offered,
-//! fitted on request; [`crate::retrieve`]). Fitting the one nearest by structure
+//! without it, the noise class kept 1259 → 1264 of 1452). The classifier knows the other six
+//! families and the noise class ([`known`]); the ranking lists the three it does not know last
+//! (offered, fitted on request; [`crate::retrieve`]). Fitting the one nearest by structure
 //! distance with the classifier's three where it was nearer than them was measured and not kept:
 //! structured labelled 46 against 48 (every fold of the cross-validation chose without it).
 

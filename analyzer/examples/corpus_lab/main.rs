@@ -376,8 +376,8 @@ const CORPUS_FOLDS: usize = 4;
 /// variants of one texture (`wickedmarble8`, `8a`, `8b`; 0 A.D.'s `cliff_01` … `cliff_03`) are
 /// held out together. Drawn by file, they fell on both sides of a fold and the held-out numbers
 /// measured recognising a texture seen in another variant, not a family: 595 of 892 held-out
-/// structured quadrants with the family nearest by file, 531 by stem (docs/devset.md, "Folds by
-/// texture stem").
+/// structured quadrants with the family nearest by file, 550 by stem at the same setting
+/// (docs/devset.md, "Folds by texture stem").
 fn corpus_fold(file: &str) -> usize {
     let (folder, name) = lab_common::corpus_files::stem(file);
     proctex::devset::fold_of(&format!("{folder}__{name}"), CORPUS_FOLDS)
