@@ -18,8 +18,9 @@ put first), so the search can only make the rule stricter or turn it off.
 The search (tools/pooled_cv.py): the pools' labelled and served rates summed, 4 folds in each
 (the development set's by file, the corpus's by texture stem), against the same search on the
 development set alone. The corpus run may hold only the textures the rule can touch, with
-CORPUS_MANIFEST giving the whole corpus's class sizes by fold (the untouched quadrants add the same to every threshold). Ties: the strictest threshold among
-the best (the fewest quadrants decided by a cue the rule reads alone).
+CORPUS_MANIFEST giving the whole corpus's class sizes by fold (the untouched quadrants add the
+same to every threshold). Ties: the strictest threshold among the best (the fewest quadrants
+decided by a cue the rule reads alone).
 
 With --gate, a second cue gates the rule (nested: the cue, its direction and threshold chosen on
 the training folds with the skewness threshold): the rule decides only where that cue is also
