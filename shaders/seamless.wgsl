@@ -39,7 +39,7 @@ fn texture_noise_wrapped(a: vec2<f32>) -> ChannelNoise {
             v = noise2_periodic_oriented(p, vec2<f32>(m, m), mix);
         }
         n.sum += w * v;
-        n.fine += fw * v;
+        n.fine += fw * fine_value(v);
     }
     return n;
 }

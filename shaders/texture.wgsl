@@ -1,5 +1,5 @@
 // The procedural texture at a point. Twins: analyzer/src/render.rs (Prepared::texel,
-// texture_noise, colour, tone_excursion, tone_eval, shade).
+// fine_value, texture_noise, colour, tone_excursion, tone_eval, shade).
 
 fn texel(world: vec3<f32>) -> vec3<f32> {
     let c = params.transform.y;
@@ -17,6 +17,14 @@ fn texel(world: vec3<f32>) -> vec3<f32> {
 struct ChannelNoise {
     sum: vec3<f32>,
     fine: vec3<f32>,
+}
+
+// The finest band's part after the histogram at the band's unit-variance values `v`: bounded,
+// of the band's variance (analyzer/src/render.rs: FINE_GAIN, fine_value).
+const FINE_GAIN: f32 = 1.5925374;
+
+fn fine_value(v: vec3<f32>) -> vec3<f32> {
+    return FINE_GAIN * tanh(v);
 }
 
 // The three channels' multiresolution noise: every band read once (one RGBA fetch per tap),
@@ -54,7 +62,7 @@ fn texture_noise(u: vec3<f32>, log2_fp: f32) -> ChannelNoise {
             }
         }
         n.sum += w * v;
-        n.fine += fw * v;
+        n.fine += fw * fine_value(v);
     }
     return n;
 }

@@ -44,8 +44,8 @@ pub struct Options {
     /// Fit the noise model's output tone curve ([`crate::noise_tone`]; only with the
     /// histogram on); off: Lagae's independent channels alone.
     pub tone: bool,
-    /// Draw the finest band Gaussian after the histogram
-    /// ([`crate::params::NoiseModel::finest_band_gaussian`]); off: Lagae's histogram on the sum
+    /// Draw the finest band after the histogram, apart from it (bounded:
+    /// [`crate::params::NoiseModel::finest_band_gaussian`]); off: Lagae's histogram on the sum
     /// of every band.
     pub fine_gaussian: bool,
 }

@@ -264,8 +264,8 @@ pub struct NoiseModel {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tone: Option<Tone>,
     /// Per decorrelated channel, the amplitude of the finest band drawn after the histogram
-    /// matching, Gaussian (channel units): `M_c = F_c⁻¹(Φ(Σ_j w_cj N_c(…)/σ_c)) + fine_c·N_c(u +
-    /// o_0)`. Zero (documents from before it load unchanged): Lagae's model, every band through
+    /// matching (channel units): `M_c = F_c⁻¹(Φ(Σ_j w_cj N_c(…)/σ_c)) + fine_c·g(N_c(u + o_0))`,
+    /// `g` the bound of [`crate::render::fine_value`] (unit variance). Zero (documents from before it load unchanged): Lagae's model, every band through
     /// the histogram. Departure from Lagae towards Heeger & Bergen, who match each subband's
     /// histogram on its own: a histogram on the sum of all bands puts its tails on the finest
     /// band as often as on coarse ones, and a tail value on a pixel-scale band is an isolated
@@ -274,7 +274,8 @@ pub struct NoiseModel {
     /// leaves the tails to the coarser bands ([`NoiseModel::finest_band_gaussian`]). Measured on the
     /// development set (every quadrant, seed 1): renders within 1.5× of their photo's specks
     /// 170 → 180 of 208 (the noise model's 115 → 121 of 124), auto's fidelity paired
-    /// −0.004 ± 0.003 structured, −0.003 ± 0.005 stochastic (docs/devset.md).
+    /// −0.004 ± 0.003 structured, −0.003 ± 0.005 stochastic (docs/devset.md). The part itself is
+    /// bounded, not Gaussian ([`crate::render::fine_value`]): its own tails made specks too.
     #[serde(default, skip_serializing_if = "is_zero3")]
     pub fine: [f32; 3],
 }
@@ -461,11 +462,13 @@ impl NoiseModel {
         })
     }
 
-    /// Moves the finest band out of the histogram ([`NoiseModel::fine`]): drawn Gaussian with
-    /// its share of the channel's variance, `fine = sd(F⁻¹(Φ(Z))) · w₀/σ`, the histogram's knots
-    /// shrunk about their median by `σ_coarse / σ`, so that the channel keeps its variance
-    /// (`σ_coarse² + w₀² = σ²`). With the histogram off the render is the same sum of bands. A
-    /// channel whose finest band is silent or whose only band it is stays as it is.
+    /// Moves the finest band out of the histogram ([`NoiseModel::fine`]): drawn after it
+    /// (bounded, [`crate::render::fine_value`]) with its share of the channel's variance,
+    /// `fine = sd(F⁻¹(Φ(Z))) · w₀/σ`, the histogram's knots shrunk about their median by
+    /// `σ_coarse / σ`, so that the channel keeps its variance (`σ_coarse² + w₀² = σ²`). With the
+    /// histogram off the render is the same sum of bands but for the finest band's tails, which
+    /// the bound takes (at the same variance). A channel whose finest band is silent or whose
+    /// only band it is stays as it is.
     pub fn finest_band_gaussian(&mut self) {
         let sigma = self.sigma();
         for c in 0..3 {

@@ -1,6 +1,7 @@
-//! The finest band drawn Gaussian after the histogram (`NoiseModel::fine`): the split keeps a
-//! channel's spread, changes nothing where the histogram is off, and leaves the histogram's
-//! tails to the coarse bands, where they are not isolated pixels.
+//! The finest band drawn after the histogram (`NoiseModel::fine`), bounded
+//! (`render::fine_value`): the split keeps a channel's spread, keeps the sum where the histogram
+//! is off but for the finest band's tails, and leaves the histogram's tails to the coarse bands,
+//! where they are not isolated pixels.
 mod common;
 
 use common::{grey_basis, noise_params};
@@ -80,17 +81,70 @@ fn the_split_keeps_each_channels_spread_and_drops_the_specks() {
 }
 
 #[test]
-fn without_the_histogram_the_split_renders_the_same_sum() {
+fn without_the_histogram_the_split_renders_the_same_sum_but_for_the_finest_bands_tails() {
     let mut lagae = heavy_tailed();
     noise_mut(&mut lagae).histogram.enabled = false;
     let mut split = lagae.clone();
     noise_mut(&mut split).finest_band_gaussian();
     assert_eq!(noise_mut(&mut split).fine, [0.6; 3]);
-    for (p, q) in pixels(&lagae).iter().zip(pixels(&split)) {
-        for c in 0..3 {
-            assert!((p[c] - q[c]).abs() < 1e-5, "{p:?} against {q:?}");
+    // The coarse bands alone, to take out of both renders.
+    let mut coarse = lagae.clone();
+    noise_mut(&mut coarse)
+        .weights
+        .iter_mut()
+        .for_each(|w| w[0] = 0.0);
+    let (a, b, k) = (pixels(&lagae), pixels(&split), pixels(&coarse));
+    for c in 0..3 {
+        // Each render's finest band: the Gaussian band, and its bounded part.
+        let (mut ab, mut aa, mut bb, mut most) = (0.0f64, 0.0f64, 0.0f64, 0.0f32);
+        for ((p, q), r) in a.iter().zip(&b).zip(&k) {
+            let (g, f) = ((p[c] - r[c]) as f64, (q[c] - r[c]) as f64);
+            ab += g * f;
+            aa += g * g;
+            bb += f * f;
+            most = most.max((q[c] - r[c]).abs());
         }
+        let ratio = bb / aa;
+        assert!(
+            (0.9..1.1).contains(&ratio),
+            "channel {c}: the finest band's variance ratio {ratio}"
+        );
+        let correlation = ab / (aa * bb).sqrt();
+        assert!(correlation > 0.9, "channel {c}: correlation {correlation}");
+        // Each decorrelated channel's part at most 0.6 · FINE_GAIN, rotated into RGB.
+        let basis = lagae.colour.basis;
+        let spread: f32 = (0..3).map(|d| basis[d][c].abs()).sum();
+        let bound = 0.6 * proctex::render::FINE_GAIN * lagae.colour.contrast * spread * 1.0001;
+        assert!(
+            most <= bound,
+            "channel {c}: an excursion {most} past the bound {bound}"
+        );
     }
+}
+
+/// The part is bounded by `FINE_GAIN` band deviations and keeps the band's unit variance: the
+/// gain is `1 / sd(tanh X)` for a standard normal `X` (Simpson's rule over ±12 deviations).
+#[test]
+fn the_bounded_part_keeps_the_bands_unit_variance() {
+    use proctex::render::{FINE_GAIN, fine_value};
+    let n = 24_000;
+    let h = 24.0 / n as f64;
+    let mut second = 0.0f64;
+    for i in 0..=n {
+        let x = -12.0 + h * i as f64;
+        let weight = if i == 0 || i == n {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        let density = (-0.5 * x * x).exp() / (2.0 * std::f64::consts::PI).sqrt();
+        second += weight * density * (fine_value(x as f32) as f64).powi(2);
+    }
+    let variance = second * h / 3.0;
+    assert!((variance - 1.0).abs() < 1e-5, "variance {variance}");
+    assert!(fine_value(40.0) <= FINE_GAIN && fine_value(-40.0) >= -FINE_GAIN);
 }
 
 #[test]

@@ -106,7 +106,7 @@ test('dragging the finest band raises and removes high-frequency energy', async 
   const square = innerSquare(before.widgets.texture, 256);
   const energy0 = highFrequencyEnergy(await grab(page, square));
   // The analysis draws the finest band after the histogram (its weight in the sum is 0): its
-  // slider is the first channel's Gaussian part.
+  // slider is the first channel's part after it.
   const [x, y, w, h] = await reveal(page, 'fine.0');
   // The slider's rail is the left part of the widget (the value box and label follow it).
   const railLeft = x + 2, railRight = x + 100 - 2, cy = y + h / 2;

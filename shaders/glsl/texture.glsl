@@ -1,5 +1,6 @@
 // The procedural texture at a point (GLSL twin of shaders/texture.wgsl; Rust twins in
-// analyzer/src/render.rs: Prepared::texel, texture_noise, colour, tone_excursion, tone_eval, shade).
+// analyzer/src/render.rs: Prepared::texel, fine_value, texture_noise, colour, tone_excursion,
+// tone_eval, shade).
 
 vec3 texel(vec3 world) {
     float c = params.transform.y;
@@ -17,6 +18,14 @@ struct ChannelNoise {
     vec3 sum;
     vec3 fine;
 };
+
+// The finest band's part after the histogram at the band's unit-variance values `v`: bounded,
+// of the band's variance (analyzer/src/render.rs: FINE_GAIN, fine_value).
+const float FINE_GAIN = 1.5925374;
+
+vec3 fine_value(vec3 v) {
+    return FINE_GAIN * tanh(v);
+}
 
 // The three channels' multiresolution noise: every band read once (one RGBA fetch per tap);
 // the finest band's part after the histogram apart.
@@ -53,7 +62,7 @@ ChannelNoise texture_noise(vec3 u, float log2_fp) {
         }
 #endif
         n.sum += w * v;
-        n.fine += fw * v;
+        n.fine += fw * fine_value(v);
     }
     return n;
 }

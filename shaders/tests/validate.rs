@@ -150,6 +150,18 @@ fn uniform_layout_matches_rust() {
         constant("WARP_OFFSET").parse::<f32>().unwrap(),
         proctex::render::pattern::WARP_OFFSET
     );
+    assert_eq!(
+        constant("FINE_GAIN").parse::<f32>().unwrap(),
+        proctex::render::FINE_GAIN
+    );
+    // The GLSL twin's (exported shaders).
+    let glsl = include_str!("../glsl/texture.glsl");
+    let line = glsl
+        .lines()
+        .find(|l| l.starts_with("const float FINE_GAIN ="))
+        .expect("const float FINE_GAIN");
+    let value = line.split('=').nth(1).unwrap().trim().trim_end_matches(';');
+    assert_eq!(value.parse::<f32>().unwrap(), proctex::render::FINE_GAIN);
 }
 
 #[test]

@@ -207,21 +207,21 @@ impl ProctexApp {
                         ));
                     rects.push((format!("weight.{c}.{j}"), r));
                 }
-                // The finest band's part drawn Gaussian after the histogram.
+                // The finest band's part drawn after the histogram, bounded.
                 // Up to four times the analysed part (a band's power sixteen times), within
                 // the valid range.
                 let max = (fine.max(0.05) * 4.0).min(4.0);
                 let r = ui
                     .add(egui::Slider::new(fine, 0.0..=max).text(format!(
-                        "1/{}–1/{} cyc/px, Gaussian",
+                        "1/{}–1/{} cyc/px, bounded",
                         short(4.0 * scale),
                         short(2.0 * scale)
                     )))
                     .on_hover_text(
-                        "the finest band drawn after the histogram matching, Gaussian (in \
-                         channel units): fine grain without the histogram's tails, which on \
-                         this band would be isolated bright or dark pixels; 0: the finest band \
-                         only through its weight above",
+                        "the finest band drawn after the histogram matching, bounded at 1.6 \
+                         of its deviations (in channel units): fine grain without tails, which \
+                         on this band would be isolated bright or dark pixels; 0: the finest \
+                         band only through its weight above",
                     );
                 rects.push((format!("fine.{c}"), r));
             }
