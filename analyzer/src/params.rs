@@ -265,17 +265,18 @@ pub struct NoiseModel {
     pub tone: Option<Tone>,
     /// Per decorrelated channel, the amplitude of the finest band drawn after the histogram
     /// matching (channel units): `M_c = F_c⁻¹(Φ(Σ_j w_cj N_c(…)/σ_c)) + fine_c·g(N_c(u + o_0))`,
-    /// `g` the bound of [`crate::render::fine_value`] (unit variance). Zero (documents from before it load unchanged): Lagae's model, every band through
-    /// the histogram. Departure from Lagae towards Heeger & Bergen, who match each subband's
-    /// histogram on its own: a histogram on the sum of all bands puts its tails on the finest
-    /// band as often as on coarse ones, and a tail value on a pixel-scale band is an isolated
-    /// outlier pixel (a speck), while a photo's tails are coarse (dark spots, edges). So
-    /// analysis draws the finest band Gaussian with its share of the channel's variance and
-    /// leaves the tails to the coarser bands ([`NoiseModel::finest_band_gaussian`]). Measured on the
-    /// development set (every quadrant, seed 1): renders within 1.5× of their photo's specks
-    /// 170 → 180 of 208 (the noise model's 115 → 121 of 124), auto's fidelity paired
-    /// −0.004 ± 0.003 structured, −0.003 ± 0.005 stochastic (docs/devset.md). The part itself is
-    /// bounded, not Gaussian ([`crate::render::fine_value`]): its own tails made specks too.
+    /// `g` the bound of [`crate::render::fine_value`] (unit variance). Zero (documents from before
+    /// it load unchanged): Lagae's model, every band through the histogram. Departure from Lagae
+    /// towards Heeger & Bergen, who match each subband's histogram on its own: a histogram on the
+    /// sum of all bands puts its tails on the finest band as often as on coarse ones, and a tail
+    /// value on a pixel-scale band is an isolated outlier pixel (a speck), while a photo's tails
+    /// are coarse (dark spots, edges). So analysis draws the finest band apart, after the
+    /// histogram, with its share of the channel's variance, and leaves the tails to the coarser
+    /// bands ([`NoiseModel::finest_band_gaussian`]). Measured on the development set (every
+    /// quadrant, seed 1): renders within 1.5× of their photo's specks 170 → 180 of 208 (the noise
+    /// model's 115 → 121 of 124), auto's fidelity paired −0.004 ± 0.003 structured, −0.003 ± 0.005
+    /// stochastic (docs/devset.md). The part itself is bounded, not Gaussian
+    /// ([`crate::render::fine_value`]): its own tails made specks too.
     #[serde(default, skip_serializing_if = "is_zero3")]
     pub fine: [f32; 3],
 }

@@ -117,13 +117,13 @@ pub fn stem(file: &str) -> (&str, &str) {
 /// The classes (of `classes`) whose every labelled texture (`(file, class)`) is a variant of one
 /// ([`stem`]): such a class is one texture, not a class, and `corpus_lab` does not train it. The
 /// corpus's perlin class was four variants of one 0 A.D. lava texture (`LavaTest03`–`06`); its
-/// quadrants were "recognised" on the corpus's folds, then drawn by file, only because the
-/// variants fell in different folds (13 of 16 held out), and it drew 10 held-out quadrants of
-/// other families to itself. Without it the other families' held-out nearest family went 589 → 595 of 892 and the
+/// quadrants were "recognised" on the corpus's folds, then drawn by file, only because the variants
+/// fell in different folds (13 of 16 held out), and it drew 10 held-out quadrants of other families
+/// to itself. Without it the other families' held-out nearest family went 589 → 595 of 892 and the
 /// noise class kept 1259 → 1264 of 1452 (the same setting chosen; the folds are drawn by stem
-/// since, which holds a texture's variants out together). Noticed on the development set (a
-/// rubble wall's nearest class was perlin), decided on the corpus's folds (docs/devset.md, "A
-/// class of one texture").
+/// since, which holds a texture's variants out together). Noticed on the development set (a rubble
+/// wall's nearest class was perlin), decided on the corpus's folds (docs/devset.md, "A class of one
+/// texture").
 pub fn classes_of_one_texture(labelled: &[(&str, usize)], classes: usize) -> Vec<usize> {
     (0..classes)
         .filter(|&c| {
