@@ -29,6 +29,8 @@
 //!    for a few `α`, `g` the factor that gives the residual the power step 4 asks of it, and
 //!    the ramp's contrast lowered by as much variance as the residual gains; the candidate
 //!    whose render of the user's seed is nearest the photo is kept ([`fit_structured`]).
+//! 7. **Grain.** The kept candidate's finest band along the tone line is raised until its
+//!    render's typical pixel is as grainy as the photo's ([`grain`]).
 //!
 //! Tone swap: with `swapped`, the photo's `t` is reversed before the pairing (the pattern's
 //! `s = 0` then meets the photo's lighter tone). Which orientation fits is the retrieval's
@@ -43,6 +45,7 @@ use crate::render::pattern::{ramp_rows, structure_image};
 use crate::two_tone::two_tone;
 
 mod final_fit;
+pub mod grain;
 pub(crate) mod tone;
 pub use final_fit::{FinalFit, FirstRound, Scored, fit_structured, tone_render};
 pub use tone::{TONE_KNOTS, TONE_SEEDS, fit_tone};

@@ -109,13 +109,15 @@ impl FirstRound {
     }
 
     /// The rest of step 6 (the rougher variants at the chosen amplitude, the best with its tone
-    /// curve): [`fit_structured`], bit for bit.
+    /// curve and its grain matched, [`FinalFit::match_grain`]): [`fit_structured`], bit for bit.
     pub fn complete(self, db: &crate::db::Db) -> Analysis {
         let FirstRound { fit, first } = self;
         let chosen = fit.chosen(&first);
         let rest: Vec<usize> = (1..=fit.variants()).collect();
         let rest = crate::parallel::map_in_order(&rest, |&k| fit.variant(db, k, chosen));
-        fit.finish(first.into_iter().chain(rest))
+        let mut a = fit.finish(first.into_iter().chain(rest));
+        fit.match_grain(&mut a);
+        a
     }
 }
 
@@ -309,6 +311,14 @@ impl FinalFit {
     /// [`tone_render`]).
     pub fn tone_render(&self, best: &crate::params::Params, k: u32) -> Vec<[f32; 3]> {
         tone_render(&self.photo, best, k)
+    }
+
+    /// The final fit's last step, after [`FinalFit::finish`] or [`FinalFit::finish_with`]: the
+    /// render's fine grain raised to the photo's ([`super::grain::match_grain`]). Not part of
+    /// [`FirstRound::amplitude_fit`], the render that the ranking compares with the noise
+    /// model: the family choice is the same with it or without.
+    pub fn match_grain(&self, a: &mut Analysis) {
+        super::grain::match_grain(&self.photo, &mut a.params);
     }
 
     /// Pixels of the photo (of each tone render).

@@ -28,6 +28,9 @@ pub struct FinalFitJob {
     /// The best of both rounds once they are stored, and its tone renders.
     best: Option<Analysis>,
     tone: Vec<Option<Vec<[f32; 3]>>>,
+    /// Whether the fit ends with its grain matched ([`FinalFit::match_grain`]): a whole final
+    /// fit does, the first round alone ([`FinalFitJob::first_round`]) does not.
+    whole: bool,
 }
 
 impl FinalFitJob {
@@ -36,7 +39,7 @@ impl FinalFitJob {
     pub fn new(db: &Db, photo: &Photo, opts: &Options, pattern: &Pattern, swapped: bool) -> Self {
         let fit = FinalFit::new(db, photo, pattern, opts, swapped);
         let variants = fit.variants();
-        Self::of(fit, pattern_json(pattern, swapped), variants)
+        Self::of(fit, pattern_json(pattern, swapped), variants, true)
     }
 
     /// The first round only, and the tone renders of its best: [`FirstRound::amplitude_fit`]
@@ -49,7 +52,7 @@ impl FinalFitJob {
         swapped: bool,
     ) -> Self {
         let fit = FinalFit::new(db, photo, pattern, opts, swapped);
-        Self::of(fit, pattern_json(pattern, swapped), 0)
+        Self::of(fit, pattern_json(pattern, swapped), 0, false)
     }
 
     /// The rest of the final fit from its first round (run here or elsewhere: the ranking's
@@ -58,12 +61,12 @@ impl FinalFitJob {
     pub fn from_first_round(round: FirstRound, pattern: &Pattern, swapped: bool) -> Self {
         let (fit, first) = round.into_parts();
         let variants = fit.variants();
-        let mut job = Self::of(fit, pattern_json(pattern, swapped), variants);
+        let mut job = Self::of(fit, pattern_json(pattern, swapped), variants, true);
         job.first = first.into_iter().map(Some).collect();
         job
     }
 
-    fn of(fit: FinalFit, pattern_json: String, variants: usize) -> Self {
+    fn of(fit: FinalFit, pattern_json: String, variants: usize, whole: bool) -> Self {
         FinalFitJob {
             pattern_json,
             first: vec![None; fit.amplitudes()],
@@ -71,6 +74,7 @@ impl FinalFitJob {
             rest: vec![None; variants],
             best: None,
             tone: Vec::new(),
+            whole,
             fit,
         }
     }
@@ -79,7 +83,7 @@ impl FinalFitJob {
     /// amplitude with its tone curve ([`FirstRound::amplitude_fit`]); `None` before, or for a
     /// whole final fit (its tasks past the first round).
     pub fn into_first_round(self) -> Option<(FirstRound, Analysis)> {
-        if !self.rest.is_empty() {
+        if self.whole {
             return None;
         }
         let analysis = self.finish()?;
@@ -188,12 +192,17 @@ impl FinalFitJob {
     }
 
     /// The fit: the best stored task with its output tone curve (the base when there was
-    /// nothing to choose), as [`FinalFit::finish`] gives it; `None` until every task is stored
-    /// ([`FinalFitJob::pending`] empty).
+    /// nothing to choose), as [`FinalFit::finish`] gives it, and for a whole final fit its
+    /// grain matched ([`FinalFit::match_grain`]: `fit_structured`'s result, bit for bit);
+    /// `None` until every task is stored ([`FinalFitJob::pending`] empty).
     pub fn finish(&self) -> Option<Analysis> {
         let best = self.best.as_ref()?;
         let renders: Option<Vec<_>> = self.tone.iter().cloned().collect();
-        Some(self.fit.finish_with(best.clone(), renders?))
+        let mut a = self.fit.finish_with(best.clone(), renders?);
+        if self.whole {
+            self.fit.match_grain(&mut a);
+        }
+        Some(a)
     }
 }
 
