@@ -67,8 +67,8 @@ pub fn fine_deviation(pixels: &[[f32; 3]], w: usize, h: usize) -> f64 {
 
 /// Raises structured `params`' finest band's part along the tone line
 /// ([`crate::params::NoiseModel::fine`], channel 0) until its render of the user's seed at
-/// `photo`'s scale (its top-left [`GRAIN_WINDOW`]² at most) has `photo`'s [`fine_deviation`] (see the module docs); nothing when the
-/// render already has it, or for another model.
+/// `photo`'s scale (its top-left [`GRAIN_WINDOW`]² at most) has `photo`'s [`fine_deviation`]
+/// (see the module docs); nothing when the render already has it, or for another model.
 ///
 /// The deviation is taken to add in quadrature (`d² = a + b·v²`, `v` the amplitude): from the
 /// render as it is, then one at twice the amplitude, the secant in `(v², d²)` gives the next
@@ -162,9 +162,10 @@ mod tests {
         let p = pattern_shell(Pattern::new(PatternKind::Brick, 10.0), 2, false);
         let full = render(&p, 300, 280, &View::default());
         let window = render(&p, GRAIN_WINDOW, GRAIN_WINDOW, &View::default());
-        for y in 0..GRAIN_WINDOW as usize {
-            for x in 0..GRAIN_WINDOW as usize {
-                assert_eq!(window.pixels[y * 256 + x], full.pixels[y * 300 + x]);
+        let side = GRAIN_WINDOW as usize;
+        for y in 0..side {
+            for x in 0..side {
+                assert_eq!(window.pixels[y * side + x], full.pixels[y * 300 + x]);
             }
         }
     }
