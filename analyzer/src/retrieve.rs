@@ -350,6 +350,9 @@ pub struct Suggester {
     nearer_scatterings: Option<rank::NearerScatterings>,
     /// The photo's own patch-to-patch distance ([`rank::self_distance`]), once computed.
     self_distance: std::sync::OnceLock<f32>,
+    /// The reduced photo's fine deviation ([`crate::structure::grain::fine_deviation`]), what
+    /// each fitted family's preview is grain matched to, once computed.
+    grain_target: std::sync::OnceLock<f64>,
 }
 
 /// A candidate fitted on the reduced photo: its parameters, the texture distance of their
@@ -430,6 +433,7 @@ impl Suggester {
             nearest_first_round: Default::default(),
             nearer_scatterings: None,
             self_distance: std::sync::OnceLock::new(),
+            grain_target: std::sync::OnceLock::new(),
         }
     }
 

@@ -447,3 +447,35 @@ fn fitting_the_families_that_order_the_list_alone_gives_the_full_ranking() {
         }
     }
 }
+
+/// Every fitted family's preview (its row's thumbnail) has the reduced photo's fine grain: the
+/// render's fine deviation reaches the photo's where the fast fit left it smoother
+/// (`structure::grain::match_grain`), and the noise model's row is its analysis as it was.
+#[test]
+fn every_fitted_familys_preview_has_the_photos_grain() {
+    use proctex::params::Model;
+    use proctex::render::{View, render};
+    use proctex::structure::grain::fine_deviation;
+    let db = Db::shipped();
+    let opts = Options::default();
+    let photo = common::dev_quadrant("megaglest_stonebricks_256.png");
+    let target = fine_deviation(&photo.pixels, photo.width as usize, photo.height as usize);
+    assert!(target > 1.0, "a grainy photo: {target}");
+    let ranked = proctex::retrieve::suggest(db, &photo, &opts);
+    let mut structured = 0;
+    for row in &ranked {
+        let p = row.preview.as_ref().expect("every row fitted");
+        if !matches!(p.model, Model::Structured(_)) {
+            continue;
+        }
+        structured += 1;
+        let img = render(p, photo.width, photo.height, &View::default());
+        let d = fine_deviation(&img.pixels, photo.width as usize, photo.height as usize);
+        assert!(
+            d > 0.85 * target,
+            "{}: {d} against the photo's {target}",
+            row.name
+        );
+    }
+    assert!(structured >= 6, "{structured}");
+}

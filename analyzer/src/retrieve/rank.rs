@@ -16,6 +16,7 @@ use crate::noise::Tile;
 use crate::params::Params;
 use crate::pattern::Pattern;
 use crate::render::{Prepared, View, render_prepared};
+use crate::structure::grain::{fine_deviation, match_grain_to};
 use crate::structure::{FirstRound, fit_structured_with};
 use crate::two_tone::TwoTone;
 
@@ -37,6 +38,12 @@ pub fn texture_distance(
 fn ranking_render(tt: &TwoTone, params: &Params, tile: &Tile) -> Photo {
     render_sized(params, tile, tt.width, tt.height)
 }
+
+/// Largest side of the corner that a preview's grain step renders
+/// ([`Suggester::match_preview_grain`]): the final fit's step renders up to 256², but a
+/// preview's step runs for every fitted family, three of them before the list; a median over
+/// 128² pixels is still steady, at a quarter of the cost. Set for cost, not by results.
+const PREVIEW_GRAIN_WINDOW: u32 = 128;
 
 /// `params` rendered at `width × height` from the origin at one texel per pixel, as the ranking
 /// renders its candidates (with `tile`, the photo's noise tile).
@@ -581,11 +588,55 @@ impl Suggester {
     /// of a fit).
     fn scored(&self, db: &Db, tile: &Tile, params: Params, classified: bool) -> Fit {
         let img = ranking_render(&self.tt, &params, tile);
+        self.scored_render(db, &img, params, classified)
+    }
+
+    /// [`Suggester::scored`] of `params` from their ranking render `img`.
+    fn scored_render(&self, db: &Db, img: &Photo, params: Params, classified: bool) -> Fit {
         Fit {
-            distance: render_distance(db, &self.tt, &self.q, &img),
-            render_classes: classified.then(|| classify(&img)),
+            distance: render_distance(db, &self.tt, &self.q, img),
+            render_classes: classified.then(|| classify(img)),
             params,
         }
+    }
+
+    /// [`Suggester::scored`], and the render's [`fine_deviation`] over its top-left
+    /// [`PREVIEW_GRAIN_WINDOW`]² (unclamped, as [`match_grain_to`] measures its own first render)
+    /// where that corner is the render `match_grain_to` would make: `params` of the ranking's 2D
+    /// seed, whose tile is `tile`, rendered at the reduced photo's size.
+    fn scored_keeping_deviation(
+        &self,
+        db: &Db,
+        tile: &Tile,
+        params: Params,
+        classified: bool,
+    ) -> (Fit, Option<f64>) {
+        let image = render_prepared(
+            &Prepared::new(&params),
+            tile,
+            self.tt.width,
+            self.tt.height,
+            &View::default(),
+        );
+        let same_render = !params.solid
+            && params.seed == self.opts.seed
+            && (self.tt.width, self.tt.height) == (self.small.width, self.small.height);
+        let deviation = same_render.then(|| {
+            let (w, h) = (
+                image.width.min(PREVIEW_GRAIN_WINDOW) as usize,
+                image.height.min(PREVIEW_GRAIN_WINDOW) as usize,
+            );
+            let corner: Vec<[f32; 3]> = (0..h)
+                .flat_map(|y| {
+                    let row = y * image.width as usize;
+                    image.pixels[row..row + w].iter().copied()
+                })
+                .collect();
+            fine_deviation(&corner, w, h)
+        });
+        // The same pixels as `ranking_render`'s.
+        let fit = self.scored_render(db, &image.to_photo(), params, classified);
+        (fit, deviation)
     }
 
     /// The noise model's analysis of the analysed photo itself, fitted and stored as the
@@ -624,13 +675,43 @@ impl Suggester {
     }
 
     /// Family `i`'s (in `starts` order) refined pattern fitted on the reduced photo, and its
-    /// texture distance.
+    /// texture distance; the params then grain matched to the reduced photo (the thumbnail and
+    /// the row's preview: [`Suggester::match_preview_grain`]).
     fn fit_index(&self, db: &Db, tile: &Tile, i: usize) -> Fit {
         let (p, _, swapped) = &self.refined[i];
         let mut p = p.clone();
         p.scale *= self.per_px;
         let fitted = fit_structured_with(&self.small, &p, &self.opts, *swapped, tile).params;
         // Only a render-ordered family can come first, where its render's classes count.
-        self.scored(db, tile, fitted, self.render_ordered().contains(&i))
+        let classified = self.render_ordered().contains(&i);
+        let (mut fit, deviation) = self.scored_keeping_deviation(db, tile, fitted, classified);
+        self.match_preview_grain(deviation, &mut fit.params);
+        fit
+    }
+
+    /// A fitted family's params as its row shows them: their fine grain raised to the reduced
+    /// photo's ([`crate::structure::grain::match_grain`], as the adopted model's final fit ends).
+    /// After the texture distance and the classes are taken, so that the order and every score
+    /// are those of the fast fit: the step moves the render's typical pixel, not its spectrum
+    /// or its pattern, and scoring its renders would put up to three more renders of each family
+    /// before the list.
+    ///
+    /// Measured (`proctex fidelity --set ../shared/photos/dev`, which records every ranked
+    /// candidate's preview specks; 208 quadrants, seed 1; docs/devset.md, "The thumbnails'
+    /// grain matched to the photo's"): every family's preview within 1.5× its photo's specks
+    /// 1505 → 1979 of 2080, the list's first three rows 192 / 183 / 124 → 206 / 205 / 199 of
+    /// 208; every order, score and fidelity the same. Nothing chosen: the target is the photo's
+    /// own deviation.
+    ///
+    /// `deviation`: the render's own fine deviation where the ranking's render measured it
+    /// ([`Suggester::scored_keeping_deviation`]; the same number `match_grain` would measure,
+    /// one render saved, the only one where the render is already as grainy as the photo).
+    fn match_preview_grain(&self, deviation: Option<f64>, params: &mut Params) {
+        let small = &self.small;
+        let target = *self.grain_target.get_or_init(|| {
+            fine_deviation(&small.pixels, small.width as usize, small.height as usize)
+        });
+        let (w, h) = (small.width, small.height);
+        match_grain_to(target, w, h, PREVIEW_GRAIN_WINDOW, deviation, params);
     }
 }

@@ -1,4 +1,6 @@
-//! The final fit's last step (ours): the render's fine grain raised to the photo's.
+//! The final fit's last step (ours): the render's fine grain raised to the photo's. The
+//! ranking's previews of the fitted families (the rows' thumbnails) take the same step on the
+//! reduced photo after their scores ([`match_grain_to`], from `retrieve::Suggester`).
 //!
 //! Why: a structured render spends its finest octaves on the pattern's edges (joints, crests,
 //! plank ends), so its power spectrum, a mean over pixels, matches the photo's while its
@@ -76,19 +78,38 @@ pub fn fine_deviation(pixels: &[[f32; 3]], w: usize, h: usize) -> f64 {
 /// ([`GRAIN_STEPS`]: at most three renders). Deterministic: the same photo and params give the
 /// same amplitude.
 pub fn match_grain(photo: &Photo, params: &mut Params) {
+    let target = fine_deviation(&photo.pixels, photo.width as usize, photo.height as usize);
+    match_grain_to(
+        target,
+        photo.width,
+        photo.height,
+        GRAIN_WINDOW,
+        None,
+        params,
+    );
+}
+
+/// [`match_grain`] with the photo given by its [`fine_deviation`] (`target`) and its size, the
+/// renders' top-left corner at most `window` pixels a side: for a caller that matches several
+/// params to one photo and measures it once. `first`: the deviation of `params`' own render in
+/// that window where the caller measured it already (`None`: rendered here).
+pub fn match_grain_to(
+    target: f64,
+    width: u32,
+    height: u32,
+    window: u32,
+    first: Option<f64>,
+    params: &mut Params,
+) {
     let Model::Structured(m) = &params.model else {
         return;
     };
-    let target = fine_deviation(&photo.pixels, photo.width as usize, photo.height as usize);
-    let (w, h) = (
-        photo.width.min(GRAIN_WINDOW),
-        photo.height.min(GRAIN_WINDOW),
-    );
+    let (w, h) = (width.min(window), height.min(window));
     let deviation = |p: &Params| {
         let img = render(p, w, h, &View::default());
         fine_deviation(&img.pixels, w as usize, h as usize)
     };
-    let d0 = deviation(params);
+    let d0 = first.unwrap_or_else(|| deviation(params));
     if d0 >= target || target <= 0.0 {
         return;
     }
