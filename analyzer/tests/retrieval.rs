@@ -450,7 +450,8 @@ fn fitting_the_families_that_order_the_list_alone_gives_the_full_ranking() {
 
 /// Every fitted family's preview (its row's thumbnail) has the reduced photo's fine grain: the
 /// render's fine deviation reaches the photo's where the fast fit left it smoother
-/// (`structure::grain::match_grain`), and the noise model's row is its analysis as it was.
+/// (`structure::grain::match_grain_to`). (The noise model's row, which the step leaves alone, is
+/// its analysis: `the_noise_model_chosen_on_a_small_photo_is_its_own_analysis`.)
 #[test]
 fn every_fitted_familys_preview_has_the_photos_grain() {
     use proctex::params::Model;
