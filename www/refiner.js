@@ -1,11 +1,11 @@
 // A helper of the analysis worker (worker.js starts up to three): it refines model families
-// of the current suggestion job in parallel with the analysis worker, one family per message,
-// then fits the families whose renders order the list, then runs tasks of the nearer-render
-// rule's first round (on the ranking's photo: `small`) and scatters for it, then tasks of the
-// adopted model's final fit the same way. It loads the same wasm and
-// pattern database, rebuilds the job's retrieval from the job's prepared photo and seed
+// of the current suggestion job in parallel with the analysis worker, one start of a family
+// per message, then fits the families whose renders order the list, then runs tasks of the
+// nearer-render rule's first round (on the ranking's photo: `small`) and scatters for it, then
+// tasks of the adopted model's final fit the same way. It loads the same wasm and pattern
+// database, rebuilds the job's retrieval from the job's prepared photo and seed
 // (`Refiner`), and returns each result (a refinement, a family's fit or a scored fit as JSON,
-// a tone render as pixels), which the analysis worker stores with `Suggestions.setRefined`,
+// a tone render as pixels), which the analysis worker stores with `Suggestions.setRefinedStart`,
 // `setOrderFit`, `setFitTask` or `setFitTone`: the same numbers as running it there.
 import init, * as wasm from './pkg/proctex_worker.js';
 
@@ -44,7 +44,7 @@ onmessage = async (e) => {
       postMessage({ token: m.token, task: m.task, both }, [both.buffer]);
     } else if (m.type === 'refine' || m.type === 'order' || m.type === 'fit') {
       let json;
-      if (m.type === 'refine') json = current.refiner.refine(m.task.family);
+      if (m.type === 'refine') json = current.refiner.refineStart(m.task.family, m.task.start);
       else if (m.type === 'order') json = current.refiner.orderFit(m.task.family, m.refined);
       else json = current.refiner.fitTask(m.pattern, m.task.index, m.chosen, !!m.small);
       postMessage({ token: m.token, task: m.task, json });

@@ -1,9 +1,9 @@
 // The analysis worker. It loads the worker's wasm (analyzeRgba, Suggestions, PyramidSynthesis,
 // modelStats, previewRgba) and does everything that takes long: decoding a photo file,
 // analysing it (or a crop of it), the automatic model choice (retrieval in the pattern
-// database, then refinement one model family per step, shared with helper workers on machines
-// with more cores: refiner.js), the Heeger–Bergen raster synthesis of the crop (one round per
-// step), the model statistics for the plots, and the CPU preview.
+// database, then refinement one start of a model family per step, shared with helper workers
+// on machines with more cores: refiner.js), the Heeger–Bergen raster synthesis of the crop
+// (one round per step), the model statistics for the plots, and the CPU preview.
 //
 // Why a worker rather than splitting the work into slices on the UI thread: the expensive steps
 // are single calls (the browser's image decode of a 12 MP JPEG, rustfft over the analysis
@@ -17,8 +17,7 @@ const PREVIEW_SIDE = 1024; // longest side of the preview sent to the UI (crop p
 let photo = null; // the current photo: { rgba, width, height, name }
 
 async function decode(bytes) {
-  const bitmap = await createImageBitmap(new Blob([bytes]), { imageOrientation: 'from-image' });
-  return bitmap;
+  return createImageBitmap(new Blob([bytes]), { imageOrientation: 'from-image' });
 }
 
 function pixelsOf(bitmap) {
@@ -71,13 +70,13 @@ dbReady.catch(() => {}); // reported per photo, below
 
 // The running suggestion: { job, id, token, cancelled, t0, todo, inflight, waiting, finished,
 // helped, helpers, fit }.
-// Refinement runs one model family per queued step, so a new photo, a crop, the plots'
-// statistics or Cancel get in between steps; helper workers (refiner.js) refine other families
-// at the same time. The families come in rounds (`pending()`: one round, the classifier's first
-// three); `todo`: families of the round nobody has
-// started (this worker takes from the front, the helpers from the back); `inflight`: families
+// Refinement runs one start of a model family per queued step, so a new photo, a crop, the
+// plots' statistics or Cancel get in between steps; helper workers (refiner.js) refine other
+// starts at the same time. The starts come in rounds (`pendingStarts()`: one round, the
+// classifier's first three families' starts); `todo`: starts of the round nobody has
+// started (this worker takes from the front, the helpers from the back); `inflight`: starts
 // at the helpers; `waiting`: this worker has nothing left to refine and waits for them.
-// Tasks are `{ kind: 'refine', family }`; once the refinement is over (`finished`),
+// Tasks are `{ kind: 'refine', family, start }`; once the refinement is over (`finished`),
 // `{ kind: 'order', family }`: the fits of the families the classifier puts first, whose renders
 // order the list (`orderFits()`), while this worker fits the noise model (`ordering`: { noise,
 // stored, helped, done }); where the ranking then compares the classifier's nearest family's
@@ -166,7 +165,7 @@ function helperDone(h, m) {
       : m.task.kind === 'order' ? !s.ordering.done : m.task.kind === 'refine' && !s.finished;
     if (stillWanted) s.todo.unshift(m.task);
   } else if (m.task.kind === 'refine' && !s.finished) {
-    s.job.setRefined(m.task.family, m.json);
+    s.job.setRefinedStart(m.task.family, m.task.start, m.json);
     s.helped++;
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
   } else if (m.task.kind === 'order' && !s.ordering.done) {
@@ -284,8 +283,11 @@ async function startSuggestions(id, crop, seed) {
   scheduleStep(s);
 }
 
+// Each refined family's starts are tasks of their own (three families of two starts: three
+// starts each for this worker and one helper, instead of two families for one of them).
 function refineTasks(job) {
-  return Array.from(job.pending(), (family) => ({ kind: 'refine', family }));
+  const p = job.pendingStarts();
+  return Array.from({ length: p.length / 2 }, (_, n) => ({ kind: 'refine', family: p[2 * n], start: p[2 * n + 1] }));
 }
 
 function scheduleStep(s) {
@@ -321,8 +323,8 @@ function suggestStep(s) {
   if (s.finished) return; // already ranked
   if (!s.cancelled && s.todo.length === 0 && s.inflight === 0) nextRound(s);
   if (!s.cancelled && s.todo.length > 0) {
-    const family = s.todo.shift().family;
-    s.job.setRefined(family, s.job.refine(family));
+    const { family, start } = s.todo.shift();
+    s.job.setRefinedStart(family, start, s.job.refineStart(family, start));
     postMessage({ type: 'suggestProgress', id: s.id, done: s.job.done(), total: s.job.steps() });
     scheduleStep(s);
     return;
@@ -334,6 +336,7 @@ function suggestStep(s) {
   }
   s.finished = true;
   clearTimeout(s.budgetTimer);
+  s.job.settlePartialStarts(); // a stopped refinement's families with some starts in
   s.refinedMs = performance.now() - s.t0;
   // The fits that order the list, in tasks shared with the helpers; the noise model here first.
   s.ordering = { noise: false, stored: 0, helped: 0, done: false };
@@ -536,7 +539,6 @@ function fitRows(s) {
     });
   }, 0);
 }
-
 
 // Benchmarks: the median milliseconds of `reps` calls of `f`.
 function medianMs(reps, f) {

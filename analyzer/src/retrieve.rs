@@ -244,41 +244,48 @@ fn rank_keeping_noise(
     let total = s.evaluations();
     let done = std::sync::atomic::AtomicUsize::new(0);
     let stop = std::sync::atomic::AtomicBool::new(false);
-    let one = |s: &Suggester, i: usize| {
-        s.refine_family(db, i, &mut |_, _| {
-            use std::sync::atomic::Ordering::Relaxed;
-            if stop.load(Relaxed) {
-                return false;
-            }
-            let d = done.fetch_add(1, Relaxed) + 1;
-            if !progress(d.min(total), total) {
-                stop.store(true, Relaxed);
-                return false;
-            }
-            true
-        })
+    let step = |_: usize, _: usize| {
+        use std::sync::atomic::Ordering::Relaxed;
+        if stop.load(Relaxed) {
+            return false;
+        }
+        let d = done.fetch_add(1, Relaxed) + 1;
+        if !progress(d.min(total), total) {
+            stop.store(true, Relaxed);
+            return false;
+        }
+        true
     };
-    // The database's tile made here, before the families run in parallel: each family's
+    let one = |s: &Suggester, i: usize| s.refine_family(db, i, &mut step.clone());
+    // The database's tile made here, before the starts run in parallel: each start's
     // refinement needs it first, and in a fresh process every thread made it for itself at
     // once (the same work twice on two cores, about 150 ms natively).
     db_tile();
-    // Round by round ([`Suggester::pending`]), each round's families in parallel on native.
+    // Round by round ([`Suggester::pending`]), each round's starts in parallel on native (three
+    // families of two starts: three starts a thread instead of two families, four starts).
     loop {
-        let round = s.pending();
+        let round = s.pending_starts();
         if round.is_empty() || stop.load(std::sync::atomic::Ordering::Relaxed) {
             break;
         }
         #[cfg(not(target_arch = "wasm32"))]
         let refined: Vec<Refined> = {
             use rayon::prelude::*;
-            round.par_iter().map(|&i| one(&s, i)).collect()
+            round
+                .par_iter()
+                .map(|&(i, k)| s.refine_start(db, i, k, &mut step.clone()))
+                .collect()
         };
         #[cfg(target_arch = "wasm32")]
-        let refined: Vec<Refined> = round.iter().map(|&i| one(&s, i)).collect();
-        for (&i, r) in round.iter().zip(refined) {
-            s.set_refined(i, r);
+        let refined: Vec<Refined> = round
+            .iter()
+            .map(|&(i, k)| s.refine_start(db, i, k, &mut step.clone()))
+            .collect();
+        for (&(i, k), r) in round.iter().zip(refined) {
+            s.set_refined_start(i, k, r);
         }
     }
+    s.settle_partial_starts();
     let asked = also.and_then(|k| (0..s.starts.len()).find(|&i| s.family(i) == k));
     if let Some(i) = asked.filter(|&i| !s.is_refined[i] && refinement.families > 0)
         && !stop.load(std::sync::atomic::Ordering::Relaxed)
@@ -303,7 +310,8 @@ struct Unreduced {
 /// The automatic model choice in steps, for callers that must stay responsive (the browser's
 /// worker): [`Suggester::new`] does the retrieval (fast), each [`Suggester::step`] refines one
 /// family of those [`Suggester::pending`] lists, [`Suggester::suggestions`] ranks what there
-/// is. [`suggest_with`] is the same, with each round's families refined in parallel on native.
+/// is. [`suggest_with`] is the same, with each round's starts ([`Suggester::pending_starts`])
+/// refined in parallel on native.
 #[derive(Clone, Debug)]
 pub struct Suggester {
     small: Photo,
@@ -332,6 +340,9 @@ pub struct Suggester {
     refined: Vec<Refined>,
     /// Which families are refined (in any order: [`Suggester::set_refined`]).
     is_refined: Vec<bool>,
+    /// Each family's starts refined so far where they were refined one by one
+    /// ([`Suggester::set_refined_start`]), in `starts` order.
+    start_results: Vec<Vec<Option<Refined>>>,
     /// Fits computed elsewhere ([`Suggester::set_fitted`]: the browser's helper workers), by
     /// family (in `starts` order), and the noise model's ([`Suggester::set_noise_fit`]).
     fitted: Vec<Option<Fit>>,
@@ -395,6 +406,7 @@ impl Suggester {
             .map(|v| (v[0].pattern.clone(), None, v[0].swapped))
             .collect();
         let is_refined = vec![false; refined.len()];
+        let start_results = starts.iter().map(|v| vec![None; v.len()]).collect();
         let fitted = vec![None; refined.len()];
         let index = |k: PatternKind| starts.iter().position(|v| v[0].pattern.kind == k);
         let cues = crate::cues::cues(&small);
@@ -426,6 +438,7 @@ impl Suggester {
             starts,
             refined,
             is_refined,
+            start_results,
             fitted,
             noise_fit: None,
             classes,
@@ -510,43 +523,109 @@ impl Suggester {
     }
 
     /// The refinement of family `i` (in retrieval order): each start refined with its share
-    /// of the evaluations, the best kept. `step(done, budget)` counts over all starts.
+    /// of the evaluations ([`Suggester::refine_start`]), the best kept
+    /// ([`best_of_starts`]). `step(done, budget)` counts over all starts; once it stops one,
+    /// the later starts do not run.
     pub fn refine_family(
         &self,
         db: &Db,
         i: usize,
         step: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Refined {
-        let starts = &self.starts[i];
         let budget = self.refinement.evaluations;
-        let share = budget / starts.len();
-        let tile = db_tile();
-        let mut best: Option<Refined> = None;
+        let mut results = Vec::with_capacity(self.starts[i].len());
         let mut offset = 0;
-        for m in starts {
-            let qm = if m.swapped {
-                self.q.swapped()
-            } else {
-                self.q.clone()
-            };
+        for k in 0..self.starts[i].len() {
             let mut stopped = false;
-            let r = refine(db, &qm, &m.pattern, share, tile, &mut |done, _| {
+            let (r, used) = self.refine_start_counted(db, i, k, &mut |done, _| {
                 let go = step(offset + done, budget);
                 stopped |= !go;
                 go
             });
-            offset += r.evaluations;
-            if best
-                .as_ref()
-                .is_none_or(|b| b.1.is_some_and(|d| r.distance < d))
-            {
-                best = Some((r.pattern, Some(r.distance), m.swapped));
-            }
+            offset += used;
+            results.push(r);
             if stopped {
                 break;
             }
         }
-        best.expect("every family has a start")
+        best_of_starts(&results)
+    }
+
+    /// Start `k` of family `i`'s refinement alone, with its share of the family's evaluations:
+    /// the starts are independent, so they can run in parallel (natively, and in the browser's
+    /// helper workers) and be stored one by one ([`Suggester::set_refined_start`]), which gives
+    /// the family's refinement bit for bit. With three families refined on two threads, a
+    /// family per task left one thread idle for a family's refinement.
+    pub fn refine_start(
+        &self,
+        db: &Db,
+        i: usize,
+        k: usize,
+        step: &mut dyn FnMut(usize, usize) -> bool,
+    ) -> Refined {
+        self.refine_start_counted(db, i, k, step).0
+    }
+
+    /// [`Suggester::refine_start`] and the evaluations it spent.
+    fn refine_start_counted(
+        &self,
+        db: &Db,
+        i: usize,
+        k: usize,
+        step: &mut dyn FnMut(usize, usize) -> bool,
+    ) -> (Refined, usize) {
+        let m = &self.starts[i][k];
+        let share = self.refinement.evaluations / self.starts[i].len();
+        let qm = if m.swapped {
+            self.q.swapped()
+        } else {
+            self.q.clone()
+        };
+        let r = refine(db, &qm, &m.pattern, share, db_tile(), step);
+        ((r.pattern, Some(r.distance), m.swapped), r.evaluations)
+    }
+
+    /// The starts still to refine, as (family, start) pairs in `starts` order: every start of
+    /// each family that [`Suggester::pending`] lists, less those stored already.
+    pub fn pending_starts(&self) -> Vec<(usize, usize)> {
+        self.pending()
+            .into_iter()
+            .flat_map(|i| {
+                let stored = &self.start_results[i];
+                (0..stored.len())
+                    .filter(|&k| stored[k].is_none())
+                    .map(move |k| (i, k))
+            })
+            .collect()
+    }
+
+    /// Stores start `k` of family `i` ([`Suggester::refine_start`], here or on another
+    /// `Suggester` built from the same photo, options and database); with its last start in,
+    /// the family is refined ([`best_of_starts`] in start order, whatever the order in which
+    /// they came).
+    pub fn set_refined_start(&mut self, i: usize, k: usize, r: Refined) {
+        let Some(slot) = self.start_results.get_mut(i).and_then(|v| v.get_mut(k)) else {
+            return;
+        };
+        *slot = Some(r);
+        if self.start_results[i].iter().all(Option::is_some) {
+            self.settle_family(i);
+        }
+    }
+
+    /// Ends a refinement that stopped early (Cancel, or its time budget): each family with
+    /// some of its starts stored but not all is refined by the best of those.
+    pub fn settle_partial_starts(&mut self) {
+        for i in 0..self.start_results.len() {
+            if !self.is_refined[i] && self.start_results[i].iter().any(Option::is_some) {
+                self.settle_family(i);
+            }
+        }
+    }
+
+    fn settle_family(&mut self, i: usize) {
+        let stored: Vec<Refined> = self.start_results[i].iter().flatten().cloned().collect();
+        self.set_refined(i, best_of_starts(&stored));
     }
 
     /// Refines the next family; `progress(done, budget)` after each evaluation of it (returning
@@ -558,6 +637,18 @@ impl Suggester {
         }
         self.next_family().is_some()
     }
+}
+
+/// The best of a family's refined starts, in start order: a later start replaces an earlier
+/// one only where strictly nearer.
+fn best_of_starts(results: &[Refined]) -> Refined {
+    let mut best: Option<&Refined> = None;
+    for r in results {
+        if best.is_none_or(|b| b.1.is_some_and(|d| r.1.is_some_and(|e| e < d))) {
+            best = Some(r);
+        }
+    }
+    best.expect("every family has a start").clone()
 }
 
 /// Entries per wanted start that [`diverse_starts`] chooses from.

@@ -480,3 +480,48 @@ fn every_fitted_familys_preview_has_the_photos_grain() {
     }
     assert!(structured >= 6, "{structured}");
 }
+
+/// A family's starts refined one by one and stored in any order (natively in parallel, in the
+/// browser's worker and its helpers) give the family's refinement bit for bit; a refinement
+/// stopped with one start of a family in ranks that family by that start's result.
+#[test]
+fn a_familys_starts_stored_in_any_order_are_its_refinement() {
+    use proctex::retrieve::Suggester;
+    let db = Db::shipped();
+    let photo = common::dev_quadrant("megaglest_stonebricks_256.png");
+    let start = Suggester::new(db, &photo, &Options::default(), Refinement::default());
+    let pairs = start.pending_starts();
+    let families = start.pending();
+    assert_eq!(
+        pairs.len(),
+        2 * families.len(),
+        "two starts a family: {pairs:?}"
+    );
+    let mut stored = start.clone();
+    for &(i, k) in pairs.iter().rev() {
+        assert!(!families.is_empty() && stored.pending().contains(&i));
+        let r = stored.refine_start(db, i, k, &mut |_, _| true);
+        stored.set_refined_start(i, k, r);
+    }
+    assert!(stored.pending().is_empty() && stored.pending_starts().is_empty());
+    for &i in &families {
+        let whole = start.refine_family(db, i, &mut |_, _| true);
+        assert!(whole.1.is_some());
+        assert_eq!(stored.refined(i), &whole, "{:?}", start.family(i));
+    }
+    // Stopped after the second start of the first family: that family is refined by it, the
+    // others keep their retrieved patterns.
+    let mut stopped = start.clone();
+    let (i, k) = pairs[1];
+    let r = stopped.refine_start(db, i, k, &mut |_, _| true);
+    stopped.set_refined_start(i, k, r.clone());
+    assert!(stopped.pending().contains(&i));
+    stopped.settle_partial_starts();
+    assert_eq!(stopped.refined(i), &r);
+    assert_eq!(stopped.pending(), families[1..]);
+    assert!(
+        families[1..]
+            .iter()
+            .all(|&j| stopped.refined(j).1.is_none())
+    );
+}

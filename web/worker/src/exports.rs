@@ -108,10 +108,16 @@ impl Suggestions {
         self.job.progress().1
     }
 
-    /// The families of the current refinement round still to refine (empty: the refinement
-    /// is complete). Refine them (here or in helpers), store them, then ask again.
-    pub fn pending(&self) -> Vec<u32> {
-        self.job.pending().into_iter().map(|i| i as u32).collect()
+    /// The starts of the current refinement round still to refine, as pairs (family, start)
+    /// flattened (empty: the refinement is complete). Refine them (here or in helpers), store
+    /// them, then ask again.
+    #[wasm_bindgen(js_name = pendingStarts)]
+    pub fn pending_starts(&self) -> Vec<u32> {
+        self.job
+            .pending_starts()
+            .into_iter()
+            .flat_map(|(i, k)| [i as u32, k as u32])
+            .collect()
     }
 
     /// Refines the next family; returns whether any remain.
@@ -132,16 +138,25 @@ impl Suggestions {
         vec![w, h]
     }
 
-    /// Refines family `i` here without storing it; returns the result as JSON for
-    /// `setRefined`.
-    pub fn refine(&self, i: usize) -> Result<String, JsValue> {
-        Ok(self.job.refine(database()?, i))
+    /// Refines start `k` of family `i` here without storing it; returns the result as JSON
+    /// for `setRefinedStart`.
+    #[wasm_bindgen(js_name = refineStart)]
+    pub fn refine_start(&self, i: usize, k: usize) -> Result<String, JsValue> {
+        Ok(self.job.refine_start(database()?, i, k))
     }
 
-    /// Stores family `i`'s refinement (JSON from `refine` here or a helper's `Refiner`).
-    #[wasm_bindgen(js_name = setRefined)]
-    pub fn set_refined(&mut self, i: usize, json: &str) -> Result<(), JsValue> {
-        self.job.set_refined(i, json).map_err(js_error)
+    /// Stores start `k` of family `i` (JSON from `refineStart` here or a helper's `Refiner`);
+    /// the family is refined with its last start in.
+    #[wasm_bindgen(js_name = setRefinedStart)]
+    pub fn set_refined_start(&mut self, i: usize, k: usize, json: &str) -> Result<(), JsValue> {
+        self.job.set_refined_start(i, k, json).map_err(js_error)
+    }
+
+    /// Ends a refinement stopped early (Cancel, its time budget): each family with some of
+    /// its starts in is refined by the best of those.
+    #[wasm_bindgen(js_name = settlePartialStarts)]
+    pub fn settle_partial_starts(&mut self) {
+        self.job.settle_partial_starts();
     }
 
     /// The families whose fits order the list, once the refinement is complete: fit each
@@ -534,9 +549,10 @@ impl Refiner {
         Ok(Refiner { inner })
     }
 
-    /// Family `i`'s refinement as JSON (for `Suggestions.setRefined`).
-    pub fn refine(&self, i: usize) -> Result<String, JsValue> {
-        Ok(self.inner.refine(database()?, i))
+    /// Start `k` of family `i`'s refinement as JSON (for `Suggestions.setRefinedStart`).
+    #[wasm_bindgen(js_name = refineStart)]
+    pub fn refine_start(&self, i: usize, k: usize) -> Result<String, JsValue> {
+        Ok(self.inner.refine_start(database()?, i, k))
     }
 
     /// Family `i`'s fit with `refined` (`Suggestions.refinedOf`) as its refinement, as JSON for

@@ -282,10 +282,10 @@ impl SuggestJob {
         (self.suggester.done(), self.suggester.steps())
     }
 
-    /// The families of the current refinement round still to refine (empty: complete; see
-    /// `retrieve::Suggester::pending`).
-    pub fn pending(&self) -> Vec<usize> {
-        self.suggester.pending()
+    /// The starts of the current refinement round still to refine, as (family, start) pairs
+    /// (empty: complete; see `retrieve::Suggester::pending_starts`).
+    pub fn pending_starts(&self) -> Vec<(usize, usize)> {
+        self.suggester.pending_starts()
     }
 
     /// Refines the next family; returns whether any remain.
@@ -300,17 +300,29 @@ impl SuggestJob {
         (px, self.prepared.width, self.prepared.height)
     }
 
-    /// Stores family `i`'s refinement as JSON from [`Refiner::refine`] (or this job's own
-    /// [`Refiner::refine`]-equivalent, [`SuggestJob::refine`]).
-    pub fn set_refined(&mut self, i: usize, json: &str) -> Result<(), serde_json::Error> {
+    /// Stores start `k` of family `i` as JSON from [`Refiner::refine_start`] (or this job's
+    /// own [`SuggestJob::refine_start`]); the family is refined with its last start in.
+    pub fn set_refined_start(
+        &mut self,
+        i: usize,
+        k: usize,
+        json: &str,
+    ) -> Result<(), serde_json::Error> {
         let r: proctex::retrieve::Refined = serde_json::from_str(json)?;
-        self.suggester.set_refined(i, r);
+        self.suggester.set_refined_start(i, k, r);
         Ok(())
     }
 
-    /// Refines family `i` without storing it: its result as JSON (for [`SuggestJob::set_refined`]).
-    pub fn refine(&self, db: &Db, i: usize) -> String {
-        refined_json(&self.suggester, db, i)
+    /// Refines start `k` of family `i` without storing it: its result as JSON (for
+    /// [`SuggestJob::set_refined_start`]).
+    pub fn refine_start(&self, db: &Db, i: usize, k: usize) -> String {
+        refined_start_json(&self.suggester, db, i, k)
+    }
+
+    /// Ends a refinement stopped early: each family with some of its starts in is refined by
+    /// the best of those (`retrieve::Suggester::settle_partial_starts`).
+    pub fn settle_partial_starts(&mut self) {
+        self.suggester.settle_partial_starts();
     }
 
     /// The families whose fits order the list (`retrieve::Suggester::render_ordered`): fit
@@ -554,8 +566,8 @@ pub fn preview_rgba(params: &Params, width: u32, height: u32) -> Vec<u8> {
         .collect()
 }
 
-fn refined_json(s: &Suggester, db: &Db, i: usize) -> String {
-    serde_json::to_string(&s.refine_family(db, i, &mut |_, _| true)).expect("patterns serialise")
+fn refined_start_json(s: &Suggester, db: &Db, i: usize, k: usize) -> String {
+    serde_json::to_string(&s.refine_start(db, i, k, &mut |_, _| true)).expect("patterns serialise")
 }
 
 /// Refines families of a [`SuggestJob`] in another worker (the page's helper workers): built
@@ -603,9 +615,9 @@ impl Refiner {
         })
     }
 
-    /// Family `i`'s refinement as JSON (for [`SuggestJob::set_refined`]).
-    pub fn refine(&self, db: &Db, i: usize) -> String {
-        refined_json(&self.suggester, db, i)
+    /// Start `k` of family `i`'s refinement as JSON (for [`SuggestJob::set_refined_start`]).
+    pub fn refine_start(&self, db: &Db, i: usize, k: usize) -> String {
+        refined_start_json(&self.suggester, db, i, k)
     }
 
     /// Family `i`'s fit as JSON (for [`SuggestJob::set_order_fit`]), with `refined_json`

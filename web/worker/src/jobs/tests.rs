@@ -123,7 +123,7 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
     let steps = proctex::retrieve::RENDER_ORDERED;
     assert_eq!(job.progress(), (0, steps));
     while job.step(db) {}
-    assert!(job.pending().is_empty());
+    assert!(job.pending_starts().is_empty());
     let rows = job.rank(db);
     // Every family refined but those skipped.
     assert_eq!(
@@ -180,9 +180,9 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
     assert!(job.report(db, rows.len()).is_err());
 }
 
-/// The page's helper workers: families refined by a `Refiner` built from the job's prepared
-/// photo, stored in any order, and the families that order the list fitted there, rank exactly
-/// as the job's own steps do.
+/// The page's helper workers: families' starts refined by a `Refiner` built from the job's
+/// prepared photo, stored in any order, and the families that order the list fitted there,
+/// rank exactly as the job's own steps do.
 #[test]
 fn families_refined_elsewhere_in_any_order_rank_the_same() {
     let (rgba, w, h) = sample();
@@ -192,19 +192,23 @@ fn families_refined_elsewhere_in_any_order_rank_the_same() {
     let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
     let (px, pw, ph) = job.prepared();
     let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
-    // Round by round, each round's families in reverse order, alternately here and there.
+    // Round by round, each round's starts in reverse order, alternately here and there.
     loop {
-        let round = job.pending();
+        let round = job.pending_starts();
         if round.is_empty() {
             break;
         }
-        for &i in round.iter().rev() {
-            let json = if i % 2 == 0 {
-                helper.refine(db, i)
+        assert!(
+            round.iter().any(|&(_, k)| k > 0),
+            "families of several starts"
+        );
+        for (n, &(i, k)) in round.iter().rev().enumerate() {
+            let json = if n % 2 == 0 {
+                helper.refine_start(db, i, k)
             } else {
-                job.refine(db, i)
+                job.refine_start(db, i, k)
             };
-            job.set_refined(i, &json).unwrap();
+            job.set_refined_start(i, k, &json).unwrap();
         }
     }
     assert_eq!(job.progress(), stepped.progress());
@@ -231,7 +235,7 @@ fn families_refined_elsewhere_in_any_order_rank_the_same() {
             (&y.name, y.score, y.distance, y.refined, y.skipped)
         );
     }
-    assert!(job.set_refined(0, "not json").is_err());
+    assert!(job.set_refined_start(0, 0, "not json").is_err());
     assert!(job.set_order_fit(0, "not json").is_err());
     assert!(helper.order_fit(db, 0, "not json").is_err());
     assert!(Refiner::new(db, &px[1..], pw, ph, 1).is_err());
