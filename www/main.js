@@ -48,7 +48,8 @@ worker.onmessage = (e) => {
     else {
       lastSuggestions = {
         rows: JSON.parse(m.rows), ms: m.ms, refinedMs: m.refinedMs, cancelled: m.cancelled, timedOut: m.timedOut,
-        helpers: m.helpers, helped: m.helped, fitTasks: m.fitTasks, fitHelped: m.fitHelped,
+        helpers: m.helpers, helped: m.helped, refineTasks: m.refineTasks, fitTasks: m.fitTasks,
+        fitHelped: m.fitHelped,
         orderTasks: m.orderTasks, orderHelped: m.orderHelped, nearer: m.nearer,
         count: (lastSuggestions?.count ?? 0) + 1,
         id: m.id, fittedMs: null,
@@ -575,8 +576,8 @@ window.proctex = {
   lastTimings: () => lastTimings,
   // The last ranked suggestions: rows (name, score, distance, retrieval, refined), the
   // milliseconds from retrieval to ranking, whether Cancel (or the time budget: `timedOut`)
-  // cut the refinement, how many families the helper workers refined (`helped`, of `helpers`
-  // helpers), and how many rankings the page has received (`count`).
+  // cut the refinement, how many of its starts the helper workers refined (`helped` of
+  // `refineTasks`, by `helpers` helpers), and how many rankings the page has received (`count`).
   lastSuggestions: () => lastSuggestions,
   lastAdoption: () => lastAdoption,
   // e2e/bench: at most `n` helper workers refine families for the next suggestions (default:

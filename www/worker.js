@@ -83,12 +83,9 @@ dbReady.catch(() => {}); // reported per photo, below
 // rounds (`fitPending()`); `fit`: its state ({ gen, pattern, tasks, helped, done, finish }) until
 // `finish` sends its report, with the list for the best row or as 'adopted' for a later pick. A
 // pick begins a new fit (a new `gen`); the helpers' replies for an older one are dropped.
-let suggestion = null;
-let tokens = 0;
-let fitGens = 0;
-// The refinement's time budget (milliseconds from the end of retrieval; 0: none), set by the
-// app. When it runs out, the refinement stops as Cancel stops it: the start being refined
-// finishes its step (a fraction of a second), and the list is ranked with what there is.
+let suggestion = null, tokens = 0, fitGens = 0;
+// The refinement's time budget (ms from the end of retrieval; 0: none), set by the app: when it
+// runs out, the refinement stops as Cancel does (after the start being refined) and ranks.
 let refineBudgetMs = 0;
 
 // (Re)arms the time budget of suggestion `s` (the budget may change while it runs).
@@ -268,10 +265,11 @@ async function startSuggestions(id, crop, seed) {
   }
   const s = {
     job, id, seed, token: ++tokens, cancelled: false, timedOut: false, t0: performance.now(),
-    todo: refineTasks(job), inflight: 0, finished: false, progressDone: 0,
+    todo: [], refineTasks: 0, inflight: 0, finished: false, progressDone: 0,
     waiting: false, helped: 0, helpers: 0, fit: null, ordering: null, orderTasks: 0,
   };
   suggestion = s;
+  listRefineTasks(s);
   armBudget(s);
   postMessage({ type: 'suggestProgress', id, done: 0, total: job.steps() });
   if (s.todo.length > 1) engageHelpers(s);
@@ -285,10 +283,12 @@ function postProgress(s) {
   postMessage({ type: 'suggestProgress', id: s.id, done: s.progressDone, total: s.job.steps() });
 }
 
-// A family's starts are tasks of their own: on two cores three starts each, not two families.
-function refineTasks(job) {
-  const p = job.pendingStarts();
-  return Array.from({ length: p.length / 2 }, (_, n) => ({ kind: 'refine', family: p[2 * n], start: p[2 * n + 1] }));
+// The round's refine tasks in `todo`: a family's starts are tasks of their own (on two cores
+// three starts each, not two families); `refineTasks` counts them for the list's message.
+function listRefineTasks(s) {
+  const p = s.job.pendingStarts();
+  s.todo = Array.from({ length: p.length / 2 }, (_, n) => ({ kind: 'refine', family: p[2 * n], start: p[2 * n + 1] }));
+  s.refineTasks += s.todo.length;
 }
 
 function scheduleStep(s) {
@@ -304,10 +304,9 @@ function scheduleStep(s) {
   }, 0);
 }
 
-// The next round of families, once every family of the current one is back; idle helpers take
-// their share at once.
+// The next round, once every start of the current one is back; idle helpers take theirs at once.
 function nextRound(s) {
-  s.todo = refineTasks(s.job);
+  listRefineTasks(s);
   if (s.helpers > 0) for (const h of helperPool()) dispatch(s, h);
 }
 
@@ -512,16 +511,15 @@ function postSuggestions(s, rows, thumbs, best) {
   postMessage({
     type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled, timedOut: s.timedOut,
     ms: performance.now() - s.t0, refinedMs: s.refinedMs, helpers: s.helpers, helped: s.helped,
-    fitTasks: s.fit?.tasks ?? 0, fitHelped: s.fit?.helped ?? 0,
+    refineTasks: s.refineTasks, fitTasks: s.fit?.tasks ?? 0, fitHelped: s.fit?.helped ?? 0,
     orderTasks: s.orderTasks, orderHelped: s.ordering?.helped ?? 0,
     nearer: s.nearer ?? null,
   }, [thumbs.buffer]);
   fitRows(s);
 }
 
-// The rows that the ranking did not fit (every family but those that order the list: the
-// order does not depend on them), one per macrotask, so that a new photo, a crop or a click is
-// not kept waiting; each row's texture distance and thumbnail follow the list.
+// The rows the ranking did not fit (the list's order does not depend on them), one per macrotask
+// so that a new photo, a crop or a click is not kept waiting; their distances and thumbnails.
 function fitRows(s) {
   setTimeout(() => {
     queue = queue.then(() => {

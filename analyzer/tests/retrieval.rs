@@ -497,9 +497,10 @@ fn a_familys_starts_stored_in_any_order_are_its_refinement() {
         2 * families.len(),
         "two starts a family: {pairs:?}"
     );
+    assert!(!families.is_empty());
     let mut stored = start.clone();
     for &(i, k) in pairs.iter().rev() {
-        assert!(!families.is_empty() && stored.pending().contains(&i));
+        assert!(stored.pending().contains(&i));
         let r = stored.refine_start(db, i, k, &mut |_, _| true);
         stored.set_refined_start(i, k, r);
     }

@@ -209,8 +209,8 @@ test('benchmark: model retrieval for a 256² query in WASM, and what refinement 
   const cores = await page.evaluate(() => navigator.hardwareConcurrency);
   out(`skimage_brick_512.png, trivial shader: retrieval → ranking without helper workers ` +
       `${timed[0].ms.toFixed(0)} ms (every row fitted ${timed[0].fittedMs?.toFixed(0)} ms); with ${timed[3].helpers} (navigator.hardwareConcurrency ${cores}) ` +
-      `${timed[3].ms.toFixed(0)} ms, ${timed[3].helped} of ` +
-      `${timed[3].rows.filter((r) => r.refined !== null).length} families refined by them; ratio ` +
+      `${timed[3].ms.toFixed(0)} ms, ${timed[3].helped} of ${timed[3].refineTasks} refinement starts ` +
+      `(${timed[3].rows.filter((r) => r.refined !== null).length} families) by them; ratio ` +
       `${(timed[0].ms / timed[3].ms).toFixed(2)}×; same ranking: ` +
       `${JSON.stringify(timed[0].rows) === JSON.stringify(timed[3].rows)}`);
   const [a0, a3] = [adoption[0], adoption[3]];

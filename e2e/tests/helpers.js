@@ -225,8 +225,8 @@ async function suggestionsAfter(page, label, load) {
   console.log(`${label}: ${s.suggestions.map((r) => `${r.name} ${r.score.toFixed(2)}`).join(', ')} ` +
     `(retrieval to ranking ${t.ms.toFixed(0)} ms, of which the ranking and the best row's final fit ` +
     `${(t.ms - t.refinedMs).toFixed(0)} ms; every row fitted ` +
-    `${t.fittedMs === null ? 'with it' : `${t.fittedMs.toFixed(0)} ms`}; ${t.helped} of ${s.suggestions.length - 1} ` +
-    `families refined, ${t.orderHelped} of ${t.orderTasks} fits that order the list and ${t.fitHelped} of ` +
+    `${t.fittedMs === null ? 'with it' : `${t.fittedMs.toFixed(0)} ms`}; ${t.helped} of ${t.refineTasks} ` +
+    `refinement starts, ${t.orderHelped} of ${t.orderTasks} fits that order the list and ${t.fitHelped} of ` +
     `${t.fitTasks} final-fit tasks run by ${t.helpers} helper workers)`);
   return s;
 }
