@@ -47,7 +47,7 @@ worker.onmessage = (e) => {
     else if (m.type === 'suggestError') wasm.suggestionsFailed(m.message);
     else {
       lastSuggestions = {
-        rows: JSON.parse(m.rows), ms: m.ms, refinedMs: m.refinedMs, cancelled: m.cancelled, timedOut: m.timedOut,
+        rows: JSON.parse(m.rows), ms: m.ms, requestMs: m.requestMs, refinedMs: m.refinedMs, cancelled: m.cancelled, timedOut: m.timedOut,
         helpers: m.helpers, helped: m.helped, refineTasks: m.refineTasks, fitTasks: m.fitTasks,
         fitHelped: m.fitHelped,
         orderTasks: m.orderTasks, orderHelped: m.orderHelped, nearer: m.nearer,

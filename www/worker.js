@@ -11,31 +11,11 @@
 // machine; in a worker they run whole, in parallel with rendering, and the UI thread only
 // receives the params (a few KB) and a preview.
 import init, * as wasm from './pkg/proctex_worker.js';
+import { decode, pixelsOf, previewOf } from './images.js';
+import { cancelSynthesis, medianMs, setRoundDelay, synthesise } from './synthesis.js';
 
 const ready = init();
-const PREVIEW_SIDE = 1024; // longest side of the preview sent to the UI (crop panel, split view)
 let photo = null; // the current photo: { rgba, width, height, name }
-
-async function decode(bytes) {
-  return createImageBitmap(new Blob([bytes]), { imageOrientation: 'from-image' });
-}
-
-function pixelsOf(bitmap) {
-  const { width, height } = bitmap;
-  const ctx = new OffscreenCanvas(width, height).getContext('2d', { willReadFrequently: true });
-  ctx.drawImage(bitmap, 0, 0);
-  return new Uint8Array(ctx.getImageData(0, 0, width, height).data.buffer);
-}
-
-function previewOf(bitmap) {
-  const k = Math.min(1, PREVIEW_SIDE / Math.max(bitmap.width, bitmap.height));
-  const w = Math.max(1, Math.round(bitmap.width * k));
-  const h = Math.max(1, Math.round(bitmap.height * k));
-  const ctx = new OffscreenCanvas(w, h).getContext('2d', { willReadFrequently: true });
-  ctx.imageSmoothingQuality = 'high';
-  ctx.drawImage(bitmap, 0, 0, w, h);
-  return { preview: new Uint8Array(ctx.getImageData(0, 0, w, h).data.buffer), pw: w, ph: h };
-}
 
 // Analyses a new photo; it becomes the current one only when the analysis succeeds, so a bad
 // file leaves the previous photo (and texture) in place.
@@ -45,6 +25,7 @@ async function analyseNew(id, name, bitmap, t0, decodeMs, suggest) {
   const { width, height } = bitmap;
   bitmap.close();
   postMessage({ type: 'progress', id, stage: 'Analysing' });
+  const ahead = suggest ? sendAhead(rgba, width, height, [], 1) : null;
   const report = wasm.analyzeRgba(rgba, width, height, new Uint32Array(0), 1);
   // `crop` and `seed`: those of the last analysis, for suggestions started on request.
   photo = { rgba, width, height, name, crop: [], seed: 1 };
@@ -53,7 +34,7 @@ async function analyseNew(id, name, bitmap, t0, decodeMs, suggest) {
     preview, pw, ph, width, height, suggest,
   }, [preview.buffer]);
   if (suggest) {
-    await startSuggestions(id, [], 1);
+    await startSuggestions(id, [], 1, ahead, t0, report);
   } else {
     dropSuggestion(); // the previous photo's refinement is of no use any more
   }
@@ -69,14 +50,15 @@ const dbReady = ready.then(async () => {
 dbReady.catch(() => {}); // reported per photo, below
 
 // The running suggestion: { job, id, token, cancelled, t0, todo, inflight, waiting, finished,
-// helped, helpers, fit, progressDone }. Its work is tasks, shared with helper workers
-// (refiner.js; this worker takes `todo` from the front, the helpers from the back; `inflight`:
-// tasks at the helpers; `waiting`: this worker waits for them), one per queued step, so that a
-// new photo, a crop, the plots' statistics or Cancel get in between:
-// `{ kind: 'refine', family, start }`, the starts of the classifier's first three families
-// (`pendingStarts()`); once they are in (`finished`), `{ kind: 'order', family }`, the fits whose
-// renders order the list (`orderFits()`), while this worker fits the noise model (`ordering`:
-// { noise, stored, helped, done }); where the ranking compares the classifier's nearest family's
+// helped, helpers, fit, progressDone, stored, noiseFitted }. Its work is tasks, shared with
+// helper workers (refiner.js; this worker takes `todo` from the front, the helpers from the back,
+// but for the starts that the first helper refines ahead, below; `inflight`: tasks at the
+// helpers; `waiting`: this worker waits for them), one per queued step, so that a new photo, a
+// crop, the plots' statistics or Cancel get in between: `{ kind: 'refine', family, start }`, the
+// starts of the classifier's first three families (`pendingStarts()`); once they are in
+// (`finished`), `{ kind: 'order', family }`, the fits whose renders order the list
+// (`orderFits()`), while this worker fits the noise model unless it did while it waited for the
+// helpers' last starts (`ordering`: { noise, stored, helped, done }); where the ranking compares the classifier's nearest family's
 // render with the noise model's, that family's first round as a fit's tasks (`nearer`) and one
 // `{ kind: 'scatter', gen }`; once the list is ranked with a model family as its best,
 // `{ kind: 'fit', index, gen }`: the adopted model's final fit (step 6 of the structured fit) in
@@ -104,6 +86,7 @@ function stopRefinement(s, timedOut) {
   if (s.finished) return; // ranked already (its final fit, if any, is not stopped)
   s.cancelled = true;
   s.timedOut = timedOut;
+  aheadHelper(s)?.worker.postMessage({ type: 'stopAhead', token: s.token });
   if (s.waiting) {
     s.waiting = false;
     scheduleStep(s);
@@ -120,7 +103,7 @@ function helperPool() {
   if (helpers) return helpers;
   helpers = [];
   for (let k = 0; k < HELPERS; k++) {
-    const h = { worker: null, job: null, broken: false, token: 0 };
+    const h = { worker: null, jobs: [], broken: false, token: 0 };
     try {
       h.worker = new Worker(new URL(helperScript, import.meta.url), { type: 'module' });
     } catch {
@@ -129,9 +112,8 @@ function helperPool() {
     h.worker.onmessage = (e) => helperDone(h, e.data);
     h.worker.onerror = () => {
       h.broken = true;
-      const job = h.job;
-      h.job = null;
-      if (job) helperDone(h, { token: job.token, task: job.task, error: 'helper failed' });
+      if (h.ahead && !h.ahead.done) aheadMessage(h, { token: h.ahead.token, aheadDone: true, error: true });
+      for (const job of h.jobs.slice()) helperDone(h, { token: job.token, task: job.task, error: 'helper failed' });
     };
     helpers.push(h);
   }
@@ -139,7 +121,11 @@ function helperPool() {
 }
 
 function helperDone(h, m) {
-  h.job = null;
+  if (m.claim || m.ahead || m.aheadDone) {
+    aheadMessage(h, m);
+    return;
+  }
+  h.jobs.shift(); // a helper answers its tasks in the order it got them
   const s = suggestion;
   if (!s) return;
   if (m.token !== s.token) {
@@ -157,7 +143,7 @@ function helperDone(h, m) {
       : m.task.kind === 'order' ? !s.ordering.done : m.task.kind === 'refine' && !s.finished;
     if (stillWanted) s.todo.unshift(m.task);
   } else if (m.task.kind === 'refine' && !s.finished) {
-    s.job.setRefinedStart(m.task.family, m.task.start, m.json);
+    storeStart(s, m.task, m.json);
     s.helped++;
     postProgress(s);
   } else if (m.task.kind === 'order' && !s.ordering.done) {
@@ -172,26 +158,129 @@ function helperDone(h, m) {
     s.fit.helped++;
   }
   dispatch(s, h);
-  // This worker waits only while helpers hold tasks: wake it when the last one is back, a
-  // task came back to `todo`, or an ordering fit is in (a cancelled refinement's family may
-  // still be out).
-  if (s.waiting && (fitInflight(s) === 0 || s.todo.length > 0 || m.task.kind === 'order')) {
+  wake(s, m.task.kind === 'order');
+}
+
+// Wakes this worker, which waits only while helpers hold tasks, when the last one is back, a task
+// came back to `todo`, or an ordering fit is in (`orderIn`: a cancelled start may be out).
+function wake(s, orderIn = false) {
+  if (s.waiting && (fitInflight(s) === 0 || s.todo.length > 0 || orderIn)) {
     s.waiting = false;
     scheduleStep(s);
   }
 }
 
-// Gives helper `h` the next task of `s`, when it is idle and holds the job's photo.
-function dispatch(s, h) {
-  if (h.broken || h.job || h.token !== s.token || s.todo.length === 0) return;
+// ---- The first helper refines ahead ----
+// While this worker fits the noise model of a new photo or crop, and retrieves, it hands out no
+// task. So the helpers get the job's photo first (`sendAhead`) and retrieve meanwhile, and the
+// first (`h.ahead`: { token, claims, done }) refines starts from the front of the list on its own
+// (refiner.js), naming each ({ claim }) before it refines it; this worker takes starts from the
+// back and names each taken here or by other helpers ('taken'). Where the two meet both may
+// refine one start: the same numbers, stored once (`s.stored`).
+const startKey = (t) => `${t.family}.${t.start}`;
+
+// Sends the photo of the suggestion job about to start to the helpers; the job's token, or null
+// (no helpers, a crop the analysis will refuse, or a region of more than AHEAD_PIXELS: making
+// the job's photo delays the noise model by about 12 ms a megapixel, a 24 MP JPEG's by 0.3 s).
+const AHEAD_PIXELS = 4e6;
+function sendAhead(rgba, width, height, crop, seed) {
+  if ((crop.length ? crop[2] * crop[3] : width * height) > AHEAD_PIXELS) return null;
+  const pool = helperPool().filter((h) => !h.broken).slice(0, helperLimit);
+  if (pool.length === 0) return null;
+  let p;
+  try { p = new wasm.SuggestionPhoto(rgba, width, height, new Uint32Array(crop), seed); } catch { return null; }
+  const [rgb, size] = [p.pixels(), p.size()];
+  p.free();
+  const token = ++tokens;
+  pool.forEach((h, k) => {
+    h.worker.postMessage({ type: 'photo', token, rgb, width: size[0], height: size[1], seed, ahead: k === 0 });
+    h.token = token;
+    h.ahead = k === 0 ? { token, claims: new Map(), done: false } : null;
+  });
+  return token;
+}
+
+// The helper refining ahead for `s`, if one still is.
+function aheadHelper(s) {
+  return helperPool().find((h) => h.ahead?.token === s.token && !h.ahead.done);
+}
+
+// Names a start taken here or by another helper to the helper refining ahead.
+function tellTaken(s, task) {
+  const h = aheadHelper(s);
+  if (h) h.worker.postMessage({ type: 'taken', token: s.token, family: task.family, start: task.start });
+}
+
+// Stores a refined start unless it is in already (the helper refining ahead may meet this one).
+function storeStart(s, task, json) {
+  const key = startKey(task);
+  if (s.stored.has(key)) return;
+  s.stored.add(key);
+  s.job.setRefinedStart(task.family, task.start, json);
+}
+
+// A claim, a result or the end of the helper refining ahead. Before its job exists (the
+// database still loading) claims and results wait in `h.ahead.claims` for `startSuggestions`.
+function aheadMessage(h, m) {
+  const a = h.ahead;
+  if (!a || a.token !== m.token) return;
+  const s = suggestion?.token === m.token ? suggestion : null;
+  if (m.claim) {
+    const c = { key: startKey(m.claim), task: m.claim, counted: false, json: undefined };
+    a.claims.set(c.key, c);
+    if (s) aheadClaim(s, c);
+  } else if (m.aheadDone) {
+    a.done = true;
+    if (m.error) h.broken = true; // its unanswered starts go back to `todo`
+    for (const c of a.claims.values()) {
+      if (s && c.counted && c.json === undefined) {
+        c.counted = false;
+        s.inflight--;
+        if (!s.finished && !s.stored.has(c.key)) s.todo.push(c.task);
+      }
+    }
+  } else {
+    const c = a.claims.get(startKey(m.task));
+    if (!c) return;
+    c.json = m.json;
+    if (s) aheadClaim(s, c);
+  }
+  if (s) {
+    dispatch(s, h);
+    wake(s);
+  }
+}
+
+// A start the helper refining ahead took: out of `todo`, in flight until its result is in.
+function aheadClaim(s, c) {
+  s.todo = s.todo.filter((t) => startKey(t) !== c.key);
+  if (c.json === undefined) {
+    if (!c.counted) s.inflight++;
+    c.counted = true;
+    return;
+  }
+  if (c.counted) s.inflight--;
+  c.counted = false;
+  if (s.finished || s.stored.has(c.key)) return;
+  storeStart(s, c.task, c.json);
+  s.helped++;
+  postProgress(s);
+}
+
+// Gives helper `h` the next task of `s`, when it holds fewer than `queue` tasks (1: when it is
+// idle) and holds the job's photo.
+function dispatch(s, h, queue = 1) {
+  if (h.broken || h.token !== s.token || s.todo.length === 0 || h.jobs.length >= queue) return;
   if (helpers.indexOf(h) >= helperLimit) return; // e2e/bench: fewer helpers from now on
+  if (h.ahead?.token === s.token && !h.ahead.done) return; // it takes its own starts
   if (s.fit ? s.fit.done : s.ordering ? s.ordering.done : s.finished || s.cancelled) return;
   const next = s.todo[s.todo.length - 1];
   if (next.kind === 'fit' && next.tone === undefined && h.fitGen !== next.gen) return;
   const task = s.todo.pop();
-  h.job = { token: s.token, task };
+  h.jobs.push({ token: s.token, task });
   s.inflight++;
   if (task.kind === 'refine') {
+    tellTaken(s, task);
     h.worker.postMessage({ type: 'refine', token: s.token, task });
   } else if (task.kind === 'order') {
     h.worker.postMessage({ type: 'order', token: s.token, task, refined: s.job.refinedOf(task.family) });
@@ -206,10 +295,14 @@ function dispatch(s, h) {
       small: s.fit.nearer,
     });
   }
+  dispatch(s, h, queue);
 }
 
-// Sends the job's prepared photo to the helpers that do not hold it yet; they then take tasks.
+// Sends the job's prepared photo to the helpers that do not hold it yet; they then take tasks:
+// two each where the fits that order the list begin while this worker fits the noise model (a
+// long step, after which it could hand out a second only late).
 function engageHelpers(s) {
+  const queue = s.ordering && !s.ordering.noise ? 2 : 1;
   const pool = helperPool().filter((h) => !h.broken).slice(0, helperLimit);
   if (pool.length === 0) return;
   s.helpers = Math.max(s.helpers, pool.length);
@@ -220,7 +313,7 @@ function engageHelpers(s) {
       helper.worker.postMessage({ type: 'photo', token: s.token, rgb, width: size[0], height: size[1], seed: s.seed });
       helper.token = s.token;
     }
-    dispatch(s, helper);
+    dispatch(s, helper, queue);
   }
 }
 
@@ -244,7 +337,10 @@ function answerAdoption(s, answer) {
     : { type: 'adopted', id: f.adoption, index: f.index, superseded: true });
 }
 
-async function startSuggestions(id, crop, seed) {
+// `aheadToken`: the token that `sendAhead` gave the helpers for this job (null: none);
+// `requestT0`: when the photo or crop was asked for (the list's `requestMs`); `report`: its
+// analysis (`analyzeRgba`), which the ranking's noise fit takes where it is the same analysis.
+async function startSuggestions(id, crop, seed, aheadToken, requestT0, report = null) {
   dropSuggestion();
   try {
     await dbReady;
@@ -264,12 +360,18 @@ async function startSuggestions(id, crop, seed) {
     return;
   }
   const s = {
-    job, id, seed, token: ++tokens, cancelled: false, timedOut: false, t0: performance.now(),
-    todo: [], refineTasks: 0, inflight: 0, finished: false, progressDone: 0,
+    job, id, seed, token: aheadToken ?? ++tokens, cancelled: false, timedOut: false,
+    t0: performance.now(), requestT0, todo: [], refineTasks: 0, inflight: 0, finished: false,
+    progressDone: 0, stored: new Set(), report,
     waiting: false, helped: 0, helpers: 0, fit: null, ordering: null, orderTasks: 0,
   };
   suggestion = s;
   listRefineTasks(s);
+  for (const h of helperPool()) {
+    if (h.ahead?.token !== s.token) continue;
+    // (A start that a failed helper took and did not return stays in `todo`.)
+    for (const c of h.ahead.claims.values()) if (!h.ahead.done || c.json !== undefined) aheadClaim(s, c);
+  }
   armBudget(s);
   postMessage({ type: 'suggestProgress', id, done: 0, total: job.steps() });
   if (s.todo.length > 1) engageHelpers(s);
@@ -322,9 +424,19 @@ function suggestStep(s) {
   }
   if (s.finished) return; // already ranked
   if (!s.cancelled && s.todo.length === 0 && s.inflight === 0) nextRound(s);
+  if (!s.cancelled && s.todo.length > 0 && !s.noiseFitted && aheadHelper(s)) {
+    // While a helper refines ahead (it needs no task from here), the noise model's fit for the
+    // ranking first (it does not depend on the refinement): the fits that order the list then
+    // start without this long step, which would keep the helpers waiting for their tasks.
+    fitNoiseModel(s);
+    scheduleStep(s);
+    return;
+  }
   if (!s.cancelled && s.todo.length > 0) {
-    const { family, start } = s.todo.shift();
-    s.job.setRefinedStart(family, start, s.job.refineStart(family, start));
+    // From the back while a helper refines ahead from the front.
+    const task = aheadHelper(s) ? s.todo.pop() : s.todo.shift();
+    tellTaken(s, task);
+    storeStart(s, task, s.job.refineStart(task.family, task.start));
     postProgress(s);
     scheduleStep(s);
     return;
@@ -339,12 +451,19 @@ function suggestStep(s) {
   s.job.settlePartialStarts(); // a stopped refinement's families with some starts in
   s.refinedMs = performance.now() - s.t0;
   // The fits that order the list, in tasks shared with the helpers; the noise model here first.
-  s.ordering = { noise: false, stored: 0, helped: 0, done: false };
+  s.ordering = { noise: !!s.noiseFitted, stored: 0, helped: 0, done: false };
   s.todo = Array.from(s.job.orderFits(), (family) => ({ kind: 'order', family }));
   s.orderTasks = s.todo.length;
   s.waiting = false;
   engageHelpers(s);
   orderStep(s);
+}
+
+// The noise model's fit for the ranking: from the analysis the app shows where that is the
+// ranking's own (a photo of at most 256² pixels: it is only scored), else fitted.
+function fitNoiseModel(s) {
+  if (!(s.report && s.job.setNoiseAnalysis(s.report))) s.job.fitNoise();
+  s.noiseFitted = true;
 }
 
 // One step of the ordering fits: the noise model, then the families' tasks nobody has taken;
@@ -353,7 +472,7 @@ function orderStep(s) {
   const o = s.ordering;
   if (o.done) return;
   if (!o.noise) {
-    s.job.fitNoise();
+    fitNoiseModel(s);
     o.noise = true;
     scheduleStep(s);
     return;
@@ -429,7 +548,7 @@ function beginFit(s, index, pattern, adoption, finish, nearer = false) {
   // The other helpers build their own fit meanwhile; the scattering one takes only the tone
   // renders, which need none (`fitGen`: the fit a helper has built).
   for (const h of helperPool()) {
-    if (!h.broken && h.token === s.token && h.job?.task.kind !== 'scatter') {
+    if (!h.broken && h.token === s.token && !h.jobs.some((j) => j.task.kind === 'scatter')) {
       h.worker.postMessage({ type: 'fitPrepare', token: s.token, pattern, small: nearer });
       h.fitGen = gen;
     }
@@ -511,6 +630,7 @@ function postSuggestions(s, rows, thumbs, best) {
   postMessage({
     type: 'suggestions', id: s.id, rows, thumbs, best, cancelled: s.cancelled, timedOut: s.timedOut,
     ms: performance.now() - s.t0, refinedMs: s.refinedMs, helpers: s.helpers, helped: s.helped,
+    requestMs: s.requestT0 === undefined ? null : performance.now() - s.requestT0,
     refineTasks: s.refineTasks, fitTasks: s.fit?.tasks ?? 0, fitHelped: s.fit?.helped ?? 0,
     orderTasks: s.orderTasks, orderHelped: s.ordering?.helped ?? 0,
     nearer: s.nearer ?? null,
@@ -537,18 +657,6 @@ function fitRows(s) {
       postMessage({ type: 'suggestError', id: s.id, message: `Model suggestions: ${err.message ?? err}` });
     });
   }, 0);
-}
-
-// Benchmarks: the median milliseconds of `reps` calls of `f`.
-function medianMs(reps, f) {
-  const t = [];
-  for (let i = 0; i < reps; i++) {
-    const s = performance.now();
-    f();
-    t.push(performance.now() - s);
-  }
-  t.sort((a, b) => a - b);
-  return t[t.length >> 1];
 }
 
 async function handle(m) {
@@ -599,19 +707,20 @@ async function handle(m) {
     }
     case 'crop': {
       if (!photo) throw new Error('no photo to crop');
+      const ahead = sendAhead(photo.rgba, photo.width, photo.height, m.crop, m.seed);
       const report = wasm.analyzeRgba(photo.rgba, photo.width, photo.height,
         new Uint32Array(m.crop), m.seed);
       photo.crop = m.crop;
       photo.seed = m.seed;
       postMessage({ type: 'analysis', id: m.id, name: photo.name, report, ms: performance.now() - t0 });
-      await startSuggestions(m.id, m.crop, m.seed);
+      await startSuggestions(m.id, m.crop, m.seed, ahead, t0, report);
       return;
     }
     case 'suggest': {
       // Suggestions asked for by the user (the start-up sample gets none by itself).
       if (!photo) throw new Error('no photo to suggest models for');
       postMessage({ type: 'suggesting', id: m.id });
-      await startSuggestions(m.id, photo.crop, photo.seed);
+      await startSuggestions(m.id, photo.crop, photo.seed, null, t0);
       return;
     }
     case 'adopt': {
@@ -631,51 +740,11 @@ async function handle(m) {
       postMessage({ type: 'preview', id: m.id, rgba, ms: performance.now() - t0 }, [rgba.buffer]);
       return;
     }
-    case 'pyramid': {
-      // The Heeger–Bergen synthesis of the current photo's crop, or of A (a shipped sample or a
-      // preset's texture, whole).
-      let a;
-      if (m.a) a = { ...(await mixtureSource(m.a)), crop: new Uint32Array(0) };
-      else if (photo) a = { ...photo, crop: new Uint32Array(m.crop) };
-      else throw new Error('no photo to synthesise from');
-      let job;
-      if (m.mix) {
-        // A texture mixture with B: a shipped sample photo or a preset's texture.
-        const b = await mixtureSource(m.mix);
-        job = wasm.PyramidSynthesis.mixture(a.rgba, a.width, a.height, a.crop, m.seed,
-          b.rgba, b.width, b.height, m.mix.m);
-      } else {
-        job = new wasm.PyramidSynthesis(a.rgba, a.width, a.height, a.crop, m.seed);
-      }
-      await runRounds(m.id, job, t0, () => {
-        const [width, height] = job.size();
-        const rgba = job.rgba();
-        return [{ rgba, width, height }, [rgba.buffer]];
-      });
+    case 'pyramid':
+    case 'solid':
+    case 'benchPyramid':
+      await synthesise(m, photo, t0);
       return;
-    }
-    case 'solid': {
-      // The Heeger–Bergen solid texture (an n³ volume) of the current photo's crop.
-      if (!photo) throw new Error('no photo to synthesise from');
-      const job = new wasm.SolidSynthesis(photo.rgba, photo.width, photo.height,
-        new Uint32Array(m.crop), m.seed, m.n);
-      await runRounds(m.id, job, t0, () => {
-        const rgba = job.rgba();
-        return [{ rgba, n: job.side(), voxelsPerUnit: job.voxelsPerUnit() }, [rgba.buffer]];
-      });
-      return;
-    }
-    case 'benchPyramid': {
-      // e2e/bench: median milliseconds of the synthesis and of the FFTs it needs, and of a
-      // 64³ solid texture (once: seconds).
-      const ms = {};
-      for (const stage of ['ffts', 'synthesis', 'solid']) {
-        ms[stage] = medianMs(stage === 'solid' ? 1 : m.reps,
-          () => wasm.benchPyramid(m.rgba, m.width, m.height, stage));
-      }
-      postMessage({ type: 'bench', id: m.id, ms });
-      return;
-    }
     case 'benchRetrieval': {
       // e2e/bench: median milliseconds of each retrieval stage over `reps` runs.
       await dbReady;
@@ -690,74 +759,6 @@ async function handle(m) {
       throw new Error(`unknown job ${m.type}`);
   }
 }
-
-// A texture of a mixture: a shipped sample photo ({ sample: name }), a preset's texture
-// ({ params: json }, rendered on the CPU at 256²) or the current photo's crop ({ crop: [x, y,
-// w, h] }), as RGBA.
-const MIX_PRESET_SIDE = 256;
-async function mixtureSource(mix) {
-  if (mix.crop) {
-    if (!photo) throw new Error('no photo to mix');
-    const [x, y, w, h] = mix.crop;
-    if (!(w > 0 && h > 0 && x + w <= photo.width && y + h <= photo.height)) {
-      throw new Error(`the crop ${w}×${h} at ${x}, ${y} reaches outside the ${photo.width}×${photo.height} photo`);
-    }
-    const rgba = new Uint8Array(w * h * 4);
-    for (let row = 0; row < h; row++) {
-      const start = ((y + row) * photo.width + x) * 4;
-      rgba.set(photo.rgba.subarray(start, start + w * 4), row * w * 4);
-    }
-    return { rgba, width: w, height: h };
-  }
-  if (mix.sample) {
-    const r = await fetch(new URL(`./samples/${mix.sample}`, import.meta.url));
-    if (!r.ok) throw new Error(`${mix.sample}: HTTP ${r.status}`);
-    const bitmap = await decode(new Uint8Array(await r.arrayBuffer()));
-    const { width, height } = bitmap;
-    const rgba = pixelsOf(bitmap);
-    bitmap.close();
-    return { rgba, width, height };
-  }
-  const rgba = wasm.previewRgba(mix.params, MIX_PRESET_SIDE, MIX_PRESET_SIDE);
-  return { rgba, width: MIX_PRESET_SIDE, height: MIX_PRESET_SIDE };
-}
-
-// Runs a synthesis job (PyramidSynthesis or SolidSynthesis) one round per macrotask, so that
-// Cancel ('cancelPyramid', not queued) gets in between rounds; posts 'pyramidProgress' after
-// each and then { type: 'pyramid', cancelled, ...result() } (`result` gives the message's
-// fields and its transfer list). Frees the job.
-async function runRounds(id, job, t0, result) {
-  const mine = { id, cancelled: cancelledSyntheses.delete(id) };
-  pyramid = mine;
-  try {
-    postMessage({ type: 'pyramidProgress', id, done: 0, total: job.steps() });
-    let more = job.steps() > 0;
-    while (more) {
-      await new Promise((r) => setTimeout(r, roundDelayMs));
-      if (mine.cancelled) {
-        postMessage({ type: 'pyramid', id, cancelled: true });
-        return;
-      }
-      more = job.step();
-      postMessage({ type: 'pyramidProgress', id, done: job.done(), total: job.steps() });
-    }
-    const [fields, transfer] = result();
-    postMessage({ type: 'pyramid', id, cancelled: false, ...fields, ms: performance.now() - t0 },
-      transfer);
-  } finally {
-    job.free();
-    if (pyramid === mine) pyramid = null;
-  }
-}
-
-// e2e: milliseconds each synthesis round waits before it runs ('setRoundDelay'; 0 by default),
-// so that a test can press Cancel between rounds however fast the machine runs them.
-let roundDelayMs = 0;
-
-// The running synthesis ({ id, cancelled }), for 'cancelPyramid'; the ids of queued ones
-// cancelled before they started.
-let pyramid = null;
-const cancelledSyntheses = new Set();
 
 // Jobs run one at a time, in order.
 let queue = Promise.resolve();
@@ -779,14 +780,13 @@ onmessage = (e) => {
     return;
   }
   if (m.type === 'setRoundDelay') {
-    roundDelayMs = Math.max(0, Number(m.ms) || 0);
+    setRoundDelay(m.ms);
     return;
   }
   if (m.type === 'cancelPyramid') {
     // Not queued: the running synthesis `m.id` sees it before its next round; a queued one
     // when it starts.
-    if (pyramid?.id === m.id) pyramid.cancelled = true;
-    else cancelledSyntheses.add(m.id);
+    cancelSynthesis(m.id);
     return;
   }
   if (m.type === 'cancelSuggest') {

@@ -652,6 +652,20 @@ impl Suggester {
         Some(analysis)
     }
 
+    /// The ranking's noise fit from `params`, the noise model that [`analyze_prepared`] made of
+    /// the analysed photo elsewhere (the browser's worker analyses it for the noise model it
+    /// shows first), stored when the ranking works on that photo unreduced: what
+    /// [`Suggester::fit_noise`] would analyse again, bit for bit, is then only scored. Returns
+    /// whether it was stored (`false`: a larger photo, which `fit_noise` fits).
+    pub fn set_noise_analysis(&mut self, db: &Db, params: Params) -> bool {
+        if !self.unreduced {
+            return false;
+        }
+        let fit = self.scored(db, &Tile::new_2d(self.opts.seed), params, true);
+        self.noise_fit = Some(fit);
+        true
+    }
+
     /// Fits `s` (a family of [`Suggester::ranked`] not fitted yet) as the ranking fits its
     /// first families; nothing for a fitted one.
     pub fn fit(&self, db: &Db, s: &mut Suggestion) {

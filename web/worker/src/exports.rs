@@ -113,11 +113,7 @@ impl Suggestions {
     /// them, then ask again.
     #[wasm_bindgen(js_name = pendingStarts)]
     pub fn pending_starts(&self) -> Vec<u32> {
-        self.job
-            .pending_starts()
-            .into_iter()
-            .flat_map(|(i, k)| [i as u32, k as u32])
-            .collect()
+        flat_pairs(self.job.pending_starts())
     }
 
     /// Refines the next family; returns whether any remain.
@@ -187,6 +183,16 @@ impl Suggestions {
     #[wasm_bindgen(js_name = setOrderFit)]
     pub fn set_order_fit(&mut self, i: usize, json: &str) -> Result<(), JsValue> {
         self.job.set_order_fit(i, json).map_err(js_error)
+    }
+
+    /// Stores the noise model's fit for `rank` from `report` (`analyzeRgba`'s JSON of the
+    /// same crop and seed) where that is the same analysis; returns whether it did (otherwise
+    /// `fitNoise` fits it).
+    #[wasm_bindgen(js_name = setNoiseAnalysis)]
+    pub fn set_noise_analysis(&mut self, report: &str) -> Result<bool, JsValue> {
+        self.job
+            .set_noise_analysis(database()?, report)
+            .map_err(js_error)
     }
 
     /// Fits the noise model for `rank` (while helpers fit families).
@@ -531,6 +537,57 @@ impl SolidSynthesis {
     }
 }
 
+/// (family, start) pairs flattened, for JavaScript.
+fn flat_pairs(pairs: Vec<(usize, usize)>) -> Vec<u32> {
+    pairs
+        .into_iter()
+        .flat_map(|(i, k)| [i as u32, k as u32])
+        .collect()
+}
+
+/// The analysis-size photo of the `Suggestions` job that `new Suggestions(rgba, width, height,
+/// crop, seed)` would make (its `preparedPixels` and `preparedSize`), without its retrieval:
+/// sent to the helpers while this worker fits the noise model. Throws as that job would on a
+/// bad size or crop.
+#[wasm_bindgen]
+#[derive(Debug)]
+pub struct SuggestionPhoto {
+    pixels: Vec<f32>,
+    width: u32,
+    height: u32,
+}
+
+#[wasm_bindgen]
+impl SuggestionPhoto {
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        rgba: &[u8],
+        width: u32,
+        height: u32,
+        crop: Vec<u32>,
+        seed: u32,
+    ) -> Result<SuggestionPhoto, JsValue> {
+        let (pixels, width, height) =
+            jobs::suggestion_photo(rgba, width, height, parse_crop(&crop)?, seed)
+                .map_err(js_error)?;
+        Ok(SuggestionPhoto {
+            pixels,
+            width,
+            height,
+        })
+    }
+
+    /// RGB `f32` triples (for `Refiner`).
+    pub fn pixels(&self) -> Vec<f32> {
+        self.pixels.clone()
+    }
+
+    /// Width and height of `pixels`.
+    pub fn size(&self) -> Vec<u32> {
+        vec![self.width, self.height]
+    }
+}
+
 /// Helper-worker job: refines families of a `Suggestions` job of another worker, from that
 /// job's `preparedPixels`, `preparedSize` and seed (the same retrieval, so the same results).
 #[wasm_bindgen]
@@ -547,6 +604,13 @@ impl Refiner {
     pub fn new(rgb: &[f32], width: u32, height: u32, seed: u32) -> Result<Refiner, JsValue> {
         let inner = jobs::Refiner::new(database()?, rgb, width, height, seed).map_err(js_error)?;
         Ok(Refiner { inner })
+    }
+
+    /// The refinement's starts as `Suggestions.pendingStarts` lists them for a new job of the
+    /// same photo: pairs (family, start) flattened.
+    #[wasm_bindgen(js_name = pendingStarts)]
+    pub fn pending_starts(&self) -> Vec<u32> {
+        flat_pairs(self.inner.pending_starts())
     }
 
     /// Start `k` of family `i`'s refinement as JSON (for `Suggestions.setRefinedStart`).

@@ -246,6 +246,37 @@ impl std::fmt::Debug for SuggestJob {
     }
 }
 
+/// The options a suggestion job analyses with: the defaults at `seed`.
+fn suggestion_options(seed: u32) -> Options {
+    Options {
+        seed,
+        ..Options::default()
+    }
+}
+
+/// RGB `f32` triples of `photo`, its width and height.
+fn flat_photo(photo: &Photo) -> (Vec<f32>, u32, u32) {
+    let px = photo.pixels.iter().flatten().copied().collect();
+    (px, photo.width, photo.height)
+}
+
+/// The analysis-size photo that a [`SuggestJob`] of the same arguments works on
+/// ([`SuggestJob::prepared`]), without the job's retrieval: what the helper workers rebuild
+/// their [`Refiner`] from while the analysis worker still fits the noise model.
+pub fn suggestion_photo(
+    rgba: &[u8],
+    width: u32,
+    height: u32,
+    crop: Option<[u32; 4]>,
+    seed: u32,
+) -> proctex::error::Result<(Vec<f32>, u32, u32)> {
+    let photo = region(rgba, width, height, crop)?;
+    Ok(flat_photo(&prepare_photo(
+        &photo,
+        &suggestion_options(seed),
+    )?))
+}
+
 impl SuggestJob {
     /// Retrieval for `crop` of an RGBA image (as [`analyze_rgba`] analyses it).
     pub fn new(
@@ -257,10 +288,7 @@ impl SuggestJob {
         seed: u32,
     ) -> proctex::error::Result<SuggestJob> {
         let photo = region(rgba, width, height, crop)?;
-        let opts = Options {
-            seed,
-            ..Options::default()
-        };
+        let opts = suggestion_options(seed);
         let reduced = prepare_photo(&photo, &opts)?;
         let suggester = Suggester::new(db, &reduced, &opts, Refinement::default());
         Ok(SuggestJob {
@@ -296,8 +324,7 @@ impl SuggestJob {
     /// The analysis-size photo the suggester works on: RGB `f32` triples, width, height (the
     /// input of a [`Refiner`] that refines families of this job elsewhere).
     pub fn prepared(&self) -> (Vec<f32>, u32, u32) {
-        let px = self.prepared.pixels.iter().flatten().copied().collect();
-        (px, self.prepared.width, self.prepared.height)
+        flat_photo(&self.prepared)
     }
 
     /// Stores start `k` of family `i` as JSON from [`Refiner::refine_start`] (or this job's
@@ -355,6 +382,35 @@ impl SuggestJob {
     pub fn fit_noise(&mut self, db: &Db) {
         let fit = self.suggester.fit_noise(db);
         self.suggester.set_noise_fit(fit);
+    }
+
+    /// Stores the ranking's noise fit from `report_json`, the [`analyze_rgba`] report of this
+    /// job's crop and seed, where the ranking works on the analysed photo as it is: the report's
+    /// params less what [`proctex::analyze::analyze_photo_with`] stamps on them (their source,
+    /// and a world scale of 1 there) are the analysis [`SuggestJob::fit_noise`] would run again.
+    /// Returns whether it was stored (`false`: a photo that the ranking reduces, or a report of
+    /// another photo, crop or seed; [`SuggestJob::fit_noise`] fits it then).
+    pub fn set_noise_analysis(
+        &mut self,
+        db: &Db,
+        report_json: &str,
+    ) -> Result<bool, serde_json::Error> {
+        #[derive(serde::Deserialize)]
+        struct ReportParams {
+            params: Params,
+        }
+        let mut params = serde_json::from_str::<ReportParams>(report_json)?.params;
+        let same_photo = params.source.as_ref().is_some_and(|s| {
+            (s.width, s.height, s.crop) == (self.width, self.height, self.crop)
+                && (s.analysis_width, s.analysis_height)
+                    == (self.prepared.width, self.prepared.height)
+        }) && params.transform.scale == 1.0
+            && params.seed == self.opts.seed;
+        if !same_photo {
+            return Ok(false);
+        }
+        params.source = None;
+        Ok(self.suggester.set_noise_analysis(db, params))
     }
 
     /// Ranks the candidates with the refinement done so far (the families not refined keep
@@ -603,16 +659,19 @@ impl Refiner {
             height,
             pixels: rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
         };
-        let opts = Options {
-            seed,
-            ..Options::default()
-        };
+        let opts = suggestion_options(seed);
         let suggester = Suggester::new(db, &photo, &opts, Refinement::default());
         Ok(Refiner {
             ranking_fit: FitHelper::new(suggester.ranking_photo().clone(), opts),
             suggester,
             fit: FitHelper::new(photo, opts),
         })
+    }
+
+    /// The refinement's starts, as the job's [`SuggestJob::pending_starts`] lists them before
+    /// any is stored: the same retrieval, so the same (family, start) pairs in the same order.
+    pub fn pending_starts(&self) -> Vec<(usize, usize)> {
+        self.suggester.pending_starts()
     }
 
     /// Start `k` of family `i`'s refinement as JSON (for [`SuggestJob::set_refined_start`]).

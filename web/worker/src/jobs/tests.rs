@@ -181,7 +181,8 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
 }
 
 /// The page's helper workers: families' starts refined by a `Refiner` built from the job's
-/// prepared photo, stored in any order, and the families that order the list fitted there,
+/// prepared photo (made before the job, as the worker sends it while it fits the noise model),
+/// stored in any order and some twice, and the families that order the list fitted there,
 /// rank exactly as the job's own steps do.
 #[test]
 fn families_refined_elsewhere_in_any_order_rank_the_same() {
@@ -189,10 +190,14 @@ fn families_refined_elsewhere_in_any_order_rank_the_same() {
     let db = Db::shipped();
     let mut stepped = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
     while stepped.step(db) {}
-    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
-    let (px, pw, ph) = job.prepared();
+    let (px, pw, ph) = suggestion_photo(&rgba, w, h, None, 1).unwrap();
     let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
-    // Round by round, each round's starts in reverse order, alternately here and there.
+    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    assert_eq!(job.prepared(), (px.clone(), pw, ph));
+    // The helper lists the starts as the job does, so it can refine them before the job exists.
+    assert_eq!(helper.pending_starts(), job.pending_starts());
+    // Round by round, each round's starts in reverse order, alternately here and there; the
+    // first of each round stored twice (a start that the worker and a helper both refined).
     loop {
         let round = job.pending_starts();
         if round.is_empty() {
@@ -209,6 +214,9 @@ fn families_refined_elsewhere_in_any_order_rank_the_same() {
                 job.refine_start(db, i, k)
             };
             job.set_refined_start(i, k, &json).unwrap();
+            if n == 0 {
+                job.set_refined_start(i, k, &json).unwrap();
+            }
         }
     }
     assert_eq!(job.progress(), stepped.progress());
@@ -428,4 +436,42 @@ fn the_nearer_render_fit_in_tasks_ranks_and_adopts_the_same() {
     let (px, pw, ph) = brick.prepared();
     let helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
     assert!(helper.nearer_scatterings("not json").is_err());
+}
+
+/// The worker analyses a new photo or crop for the noise model it shows first; where the
+/// ranking works on that photo as it is, that analysis is the ranking's noise fit: stored from
+/// the report, the ranking and the noise row's report are those of fitting the noise model
+/// again, bit for bit. A photo that the ranking reduces, or another crop's report, is refused.
+#[test]
+fn the_reports_noise_analysis_is_the_rankings_noise_fit() {
+    let (rgba, w, h) = sample();
+    let db = Db::shipped();
+    let crop = Some([0, 0, 256, 256]);
+    let report = serde_json::to_string(&analyze_rgba(&rgba, w, h, crop, 1).unwrap()).unwrap();
+    let mut fitted = SuggestJob::new(db, &rgba, w, h, crop, 1).unwrap();
+    fitted.fit_noise(db);
+    let mut stored = SuggestJob::new(db, &rgba, w, h, crop, 1).unwrap();
+    assert!(stored.set_noise_analysis(db, &report).unwrap());
+    let (a, b) = (fitted.rank(db), stored.rank(db));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(
+            (&x.name, x.score, x.distance, x.refined, x.skipped),
+            (&y.name, y.score, y.distance, y.refined, y.skipped)
+        );
+    }
+    let noise = a.iter().position(|r| r.name == "noise").unwrap();
+    assert_eq!(
+        serde_json::to_string(&fitted.report(db, noise).unwrap()).unwrap(),
+        serde_json::to_string(&stored.report(db, noise).unwrap()).unwrap()
+    );
+    // The whole 512² photo: the ranking reduces it; and another crop's report.
+    let mut whole = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    let whole_report = serde_json::to_string(&analyze_rgba(&rgba, w, h, None, 1).unwrap()).unwrap();
+    assert!(!whole.set_noise_analysis(db, &whole_report).unwrap());
+    let other =
+        serde_json::to_string(&analyze_rgba(&rgba, w, h, Some([256, 0, 256, 256]), 1).unwrap())
+            .unwrap();
+    assert!(!stored.set_noise_analysis(db, &other).unwrap());
+    assert!(stored.set_noise_analysis(db, "not json").is_err());
 }
