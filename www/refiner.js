@@ -1,10 +1,10 @@
 // A helper of the analysis worker (worker.js starts up to three): it refines model families
 // of the current suggestion job in parallel with the analysis worker, one start of a family
 // per message (the first helper also on its own, from the front of the list, while the worker
-// fits the noise model: `refineAhead`), then fits the families whose renders order the list, then runs tasks of the
-// nearer-render rule's first round (on the ranking's photo: `small`) and scatters for it, then
-// tasks of the adopted model's final fit the same way. It loads the same wasm and pattern
-// database, rebuilds the job's retrieval from the job's prepared photo and seed
+// fits the noise model: `refineAhead`), then fits the families whose renders order the list,
+// then runs tasks of the nearer-render rule's first round (on the ranking's photo: `small`) and
+// scatters for it, then tasks of the adopted model's final fit the same way. It loads the same
+// wasm and pattern database, rebuilds the job's retrieval from the job's prepared photo and seed
 // (`Refiner`), and returns each result (a refinement, a family's fit or a scored fit as JSON,
 // a tone render as pixels), which the analysis worker stores with `Suggestions.setRefinedStart`,
 // `setOrderFit`, `setFitTask` or `setFitTone`: the same numbers as running it there.

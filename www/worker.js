@@ -57,11 +57,11 @@ dbReady.catch(() => {}); // reported per photo, below
 // crop, the plots' statistics or Cancel get in between: `{ kind: 'refine', family, start }`, the
 // starts of the classifier's first three families (`pendingStarts()`); once they are in
 // (`finished`), `{ kind: 'order', family }`, the fits whose renders order the list
-// (`orderFits()`), while this worker fits the noise model unless it did while it waited for the
-// helpers' last starts (`ordering`: { noise, stored, helped, done }); where the ranking compares the classifier's nearest family's
-// render with the noise model's, that family's first round as a fit's tasks (`nearer`) and one
-// `{ kind: 'scatter', gen }`; once the list is ranked with a model family as its best,
-// `{ kind: 'fit', index, gen }`: the adopted model's final fit (step 6 of the structured fit) in
+// (`orderFits()`), while this worker fits the noise model unless it did before its starts
+// (`ordering`: { noise, stored, helped, done }); where the ranking compares the classifier's
+// nearest family's render with the noise model's, that family's first round as a fit's tasks
+// (`nearer`) and one `{ kind: 'scatter', gen }`; once the list is ranked with a model family as
+// its best, `{ kind: 'fit', index, gen }`: the adopted model's final fit (step 6 of the structured fit) in
 // rounds (`fitPending()`); `fit`: its state ({ gen, pattern, tasks, helped, done, finish }) until
 // `finish` sends its report, with the list for the best row or as 'adopted' for a later pick. A
 // pick begins a new fit (a new `gen`); the helpers' replies for an older one are dropped.
@@ -427,7 +427,7 @@ function suggestStep(s) {
   if (!s.cancelled && s.todo.length > 0 && !s.noiseFitted && aheadHelper(s)) {
     // While a helper refines ahead (it needs no task from here), the noise model's fit for the
     // ranking first (it does not depend on the refinement): the fits that order the list then
-    // start without this long step, which would keep the helpers waiting for their tasks.
+    // start without this step, during which the helpers would wait for their tasks.
     fitNoiseModel(s);
     scheduleStep(s);
     return;
