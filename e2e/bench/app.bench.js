@@ -4,6 +4,7 @@ const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
 const { openApp, state, waitFrames, suggestionsFor, clickWidget } = require('../tests/helpers');
+const { gpuCpuPerFrame, addBareCanvas } = require('./gpu_process');
 
 const ROOT = path.resolve(__dirname, '..', '..');
 // PROCTEX_BENCH=quick (scripts/test.sh in CI): fewer repetitions, one refinement pass per
@@ -116,6 +117,24 @@ test('benchmark: 12 MP drop to first frame, longest frame, 2D frame time at 1024
   out(`steady frame with the frame cache (the view unchanged, copied): ${cached.mean.toFixed(0)} ms ` +
       `(max ${cached.max.toFixed(0)}); baseline: the texture shader on every frame ${plane.mean.toFixed(0)} ms; ` +
       `ratio ${(plane.mean / cached.mean).toFixed(1)}×; the trivial shader ${flat.mean.toFixed(0)} ms`);
+
+  // What a repaint costs the browser's GPU process (the CPU the worker shares on a software
+  // adapter): the whole app, its view unchanged (the frame cache), against a bare WebGPU canvas
+  // of the same size cleared and presented.
+  const repaints = QUICK ? 4 : 8;
+  const repaint = await gpuCpuPerFrame(() => page.evaluate(() => new Promise((done) => {
+    window.proctex.requestRepaint();
+    requestAnimationFrame(() => requestAnimationFrame(done));
+  })), repaints);
+  await addBareCanvas(page);
+  const bare = await gpuCpuPerFrame(() => page.evaluate(() => window.benchPresent()), repaints);
+  await page.evaluate(() => window.benchPresentEnd());
+  const viewport = page.viewportSize();
+  out(repaint === null ? 'repaint CPU of the GPU process: not measured (no /proc or no GPU process)'
+    : `a repaint of the whole ${viewport.width}×${viewport.height} app (view unchanged): ` +
+      `${repaint.toFixed(0)} ms of the browser's GPU process's CPU (mean of ${repaints}); ` +
+      `baseline: a bare WebGPU canvas of that size cleared and presented ${bare.toFixed(0)} ms; ` +
+      `ratio ${(repaint / bare).toFixed(1)}×`);
   fs.mkdirSync(path.join(__dirname, '..', 'test-results'), { recursive: true });
   fs.writeFileSync(path.join(__dirname, '..', 'test-results', 'bench.txt'), lines.join('\n') + '\n');
 });
