@@ -3,7 +3,7 @@
 
 use wasm_bindgen::prelude::*;
 
-use crate::app::{Command, PhotoPreview, ProctexApp, SNAPSHOT, ViewMode, send};
+use crate::app::{Command, PhotoPreview, ProctexApp, SNAPSHOT, ViewMode, send, send_within};
 use proctex::params::Params;
 use proctex_worker::jobs;
 
@@ -146,11 +146,17 @@ pub fn suggestion_fitted(
     if thumbnail.len() != side * side * 4 {
         return Err(JsValue::from_str("suggestion thumbnail: wrong size"));
     }
-    send(Command::SuggestionFitted {
-        index,
-        row: Box::new(row),
-        thumbnail,
-    });
+    // The rows' fits arrive every ~0.1 s while the worker fits the rest of the list; on a
+    // software adapter each repaint costs the CPU the worker fits them with, so the rows that
+    // arrive within a quarter of a second are shown in one frame.
+    send_within(
+        Command::SuggestionFitted {
+            index,
+            row: Box::new(row),
+            thumbnail,
+        },
+        std::time::Duration::from_millis(250),
+    );
     Ok(())
 }
 

@@ -221,6 +221,17 @@ pub fn send(cmd: Command) {
     });
 }
 
+/// Queues a command and wakes the app within `delay` (sooner if something else wakes it), so
+/// that commands arriving in bursts share one frame.
+pub fn send_within(cmd: Command, delay: std::time::Duration) {
+    COMMANDS.with(|c| c.borrow_mut().push(cmd));
+    CONTEXT.with(|c| {
+        if let Some(ctx) = c.borrow().as_ref() {
+            ctx.request_repaint_after(delay);
+        }
+    });
+}
+
 /// Calls `window.proctexHost[method](...args)` (the page's side of the app: file dialog,
 /// camera, worker jobs). Returns false when the page has no such function.
 pub(super) fn host(method: &str, args: &[JsValue]) -> bool {

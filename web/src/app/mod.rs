@@ -41,7 +41,7 @@ mod tiles;
 mod view;
 
 use bridge::host;
-pub use bridge::{CONTEXT, Command, SNAPSHOT, send};
+pub use bridge::{CONTEXT, Command, SNAPSHOT, send, send_within};
 use crop::CropDrag;
 use export::export_shader;
 pub use solid::SIDES as SOLID_SIDES;
