@@ -213,16 +213,11 @@ thread_local! {
 
 /// Queues a command and wakes the app.
 pub fn send(cmd: Command) {
-    COMMANDS.with(|c| c.borrow_mut().push(cmd));
-    CONTEXT.with(|c| {
-        if let Some(ctx) = c.borrow().as_ref() {
-            ctx.request_repaint();
-        }
-    });
+    send_within(cmd, std::time::Duration::ZERO);
 }
 
 /// Queues a command and wakes the app within `delay` (sooner if something else wakes it), so
-/// that commands arriving in bursts share one frame.
+/// that commands arriving in bursts share one frame. A zero delay is egui's `request_repaint`.
 pub fn send_within(cmd: Command, delay: std::time::Duration) {
     COMMANDS.with(|c| c.borrow_mut().push(cmd));
     CONTEXT.with(|c| {

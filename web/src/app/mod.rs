@@ -406,10 +406,10 @@ impl eframe::App for ProctexApp {
 /// draws every pixel it covers, and the four fills were half of a repaint's cost. Measured in
 /// Chromium on SwiftShader (2 cores, the whole 1680×1100 app, trivial texture shader), CPU of
 /// the browser's GPU process per repaint: 517–541 ms with the fills, 277–296 ms without; clear
-/// and present alone 82–94 ms. The analysis worker runs on the same cores while the app repaints
-/// its progress and rows; in the same run a 256² crop's analysis to its fitted list (medians of five
-/// crops, two alternated rounds) took brick 2.02/1.95 s → 1.79/1.80 s, gravel 2.60/2.62 s →
-/// 2.22/2.22 s.
+/// and present alone 82–94 ms. The analysis worker runs on the same cores while the app
+/// repaints its progress and rows; in the same run a 256² crop's analysis to its fitted list
+/// (medians of five crops, two alternated rounds) took brick 2.02/1.95 s → 1.79/1.80 s, gravel
+/// 2.60/2.62 s → 2.22/2.22 s.
 fn panel_frame(style: &egui::Style) -> egui::Frame {
     egui::Frame::side_top_panel(style).fill(egui::Color32::TRANSPARENT)
 }
