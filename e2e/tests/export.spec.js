@@ -115,8 +115,13 @@ async function morphHalfway(page, structured = false) {
   const [x, y, w, h] = await reveal(page, 'morph.t');
   await page.mouse.move(x + 3, y + h / 2);
   await page.mouse.down();
+  // A frame between the press, the move and the release: with the morph's structured view a
+  // software adapter's frame can outlast the whole gesture, and egui then reads press and
+  // release in one frame as a click at the press (t stayed 0 once in CI).
+  await waitFrames(page, 1);
   // Structured: to about t = 0.3, inside the first half, where the brick pattern still shows.
   await page.mouse.move(x + Math.min(structured ? 30 : 60, w / 3), y + h / 2, { steps: 4 });
+  await waitFrames(page, 1);
   await page.mouse.up();
   // The drag reaches the app over a few frames; on a loaded software adapter two were once not
   // enough (t still 0), so wait until the app reports the slider's new t.
