@@ -2,7 +2,7 @@
 const { test } = require('@playwright/test');
 const fs = require('fs');
 const path = require('path');
-const { expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats, cliRender, innerSquare, reveal, clickWidget, ROOT, dropFile } = require('./helpers');
+const { expect, openApp, state, waitFrames, drag, grab, highFrequencyEnergy, gradientEnergy, channelStats, cliRender, innerSquare, reveal, clickWidget, ROOT, dropFile } = require('./helpers');
 
 test('opens on the sample, already rendered', async ({ page }) => {
   await openApp(page);
@@ -116,18 +116,12 @@ test('dragging the finest band raises and removes high-frequency energy', async 
   };
   const w0 = await knob();
   expect(w0).toBeGreaterThan(0);
-  await page.mouse.move(railLeft + 20, cy);
-  await page.mouse.down();
-  await page.mouse.move(railRight, cy, { steps: 8 });
-  await page.mouse.up();
+  await drag(page, [railLeft + 20, cy], [railRight, cy], 8);
   await waitFrames(page, 3);
   const wHigh = await knob();
   expect(wHigh).toBeGreaterThan(w0 * 1.5);
   const energyHigh = highFrequencyEnergy(await grab(page, square));
-  await page.mouse.move(railLeft + 40, cy);
-  await page.mouse.down();
-  await page.mouse.move(railLeft - 40, cy, { steps: 8 });
-  await page.mouse.up();
+  await drag(page, [railLeft + 40, cy], [railLeft - 40, cy], 8);
   await waitFrames(page, 3);
   expect(await knob()).toBe(0);
   const energyZero = highFrequencyEnergy(await grab(page, square));
@@ -160,10 +154,7 @@ test('band orientations turn the streaks, and their sliders edit them', async ({
   // The strength slider of band 1: dragged to its left end, that band is isotropic.
   const [x, y, , h] = await reveal(page, 'orient.strength.1');
   const cy = y + h / 2;
-  await page.mouse.move(x + 40, cy);
-  await page.mouse.down();
-  await page.mouse.move(x - 60, cy, { steps: 8 });
-  await page.mouse.up();
+  await drag(page, [x + 40, cy], [x - 60, cy], 8);
   await waitFrames(page, 3);
   const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   expect(after.model.orientation[1].strength).toBe(0);
@@ -210,10 +201,7 @@ test('wheel zooms and drag pans the view', async ({ page }) => {
   await waitFrames(page, 10);
   const s1 = await state(page);
   expect(s1.view_units_per_point).toBeGreaterThan(s0.view_units_per_point * 1.2);
-  await page.mouse.move(cx, cy);
-  await page.mouse.down();
-  await page.mouse.move(cx - 100, cy - 50, { steps: 5 });
-  await page.mouse.up();
+  await drag(page, [cx, cy], [cx - 100, cy - 50], 5);
   await waitFrames(page, 3);
   const s2 = await state(page);
   expect(s2.view_origin[0]).toBeCloseTo(s1.view_origin[0] + 100 * s1.view_units_per_point, 0);

@@ -2,7 +2,7 @@
 // rendered by the bare host pages (www/host-wgsl.html: raw WebGPU; www/host-glsl.html: raw
 // WebGL2), and compared with the app's own view of the same world rectangle.
 const { test } = require('@playwright/test');
-const { expect, openApp, state, waitFrames, grab, reveal, clickWidget, morphRockToGrass, suggestionsFor } = require('./helpers');
+const { expect, openApp, state, waitFrames, drag, grab, reveal, clickWidget, morphRockToGrass, suggestionsFor } = require('./helpers');
 
 // The app's 2D view of world [0, size)² at one world unit per pixel, and the shaders the app
 // copies with its "Copy WGSL" and "Copy GLSL" buttons (`button`: the widgets' prefix, export or
@@ -113,16 +113,8 @@ async function morphHalfway(page, structured = false) {
   }
   await morphRockToGrass(page);
   const [x, y, w, h] = await reveal(page, 'morph.t');
-  await page.mouse.move(x + 3, y + h / 2);
-  await page.mouse.down();
-  // A frame between the press, the move and the release: with the morph's structured view a
-  // software adapter's frame can outlast the whole gesture, and egui then reads press and
-  // release in one frame as a click at the press (t stayed 0 once in CI).
-  await waitFrames(page, 1);
   // Structured: to about t = 0.3, inside the first half, where the brick pattern still shows.
-  await page.mouse.move(x + Math.min(structured ? 30 : 60, w / 3), y + h / 2, { steps: 4 });
-  await waitFrames(page, 1);
-  await page.mouse.up();
+  await drag(page, [x + 3, y + h / 2], [x + Math.min(structured ? 30 : 60, w / 3), y + h / 2], 4);
   // The drag reaches the app over a few frames; on a loaded software adapter two were once not
   // enough (t still 0), so wait until the app reports the slider's new t.
   await expect.poll(async () => (await state(page)).morph_t, { timeout: 20_000 }).toBeGreaterThan(0.05);

@@ -36,6 +36,19 @@ async function waitFrames(page, n) {
   }, start + n, { polling: 50 });
 }
 
+// A mouse drag from `from` to `to` ([x, y], CSS px) that the app reads as one: a frame after the
+// press and after the motion, so that egui sees the press, the motion and the release in frames
+// of their own. On the software adapter one frame (a structured view re-rendered) can outlast
+// the whole gesture; egui then reads press and release in one frame as a click at the press.
+async function drag(page, [x0, y0], [x1, y1], steps = 6) {
+  await page.mouse.move(x0, y0);
+  await page.mouse.down();
+  await waitFrames(page, 1);
+  await page.mouse.move(x1, y1, { steps });
+  await waitFrames(page, 1);
+  await page.mouse.up();
+}
+
 // Screenshot of a rectangle [x, y, w, h] (CSS px, integers) as {width, height, data(RGBA)}.
 async function grab(page, [x, y, w, h]) {
   const buf = await page.screenshot({ clip: { x, y, width: w, height: h } });
@@ -254,7 +267,7 @@ async function dropFile(page, filePath, kind) {
 }
 
 module.exports = {
-  expect, openApp, state, waitFrames, grab, highFrequencyEnergy, gradientEnergy, channelStats,
+  expect, openApp, state, waitFrames, drag, grab, highFrequencyEnergy, gradientEnergy, channelStats,
   cliRender, CLI,
   innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, suggestionsForFile, ROOT,
   dropFile,

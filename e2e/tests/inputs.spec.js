@@ -3,7 +3,7 @@
 const { test } = require('@playwright/test');
 const path = require('path');
 const {
-  expect, openApp, state, waitFrames, grab, channelStats, clickWidget, waitAnalyses, ROOT,
+  expect, openApp, state, waitFrames, drag, grab, channelStats, clickWidget, waitAnalyses, ROOT,
 } = require('./helpers');
 
 const SAMPLES = path.join(ROOT, 'www', 'samples');
@@ -68,19 +68,13 @@ test('dragging the crop rectangle re-analyses the chosen region', async ({ page 
   const params0 = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   // Shrink the crop from its bottom-right corner to about a quarter, then move it.
   const [x, y, w, h] = s0.widgets.crop;
-  await page.mouse.move(x + w - 1, y + h - 1);
-  await page.mouse.down();
-  await page.mouse.move(x + w / 2, y + h / 2, { steps: 6 });
-  await page.mouse.up();
+  await drag(page, [x + w - 1, y + h - 1], [x + w / 2, y + h / 2]);
   await waitAnalyses(page, s0.analyses + 1);
   const s1 = await state(page);
   expect(s1.crop[2]).toBeLessThan(s0.crop[2] * 0.6);
   expect(s1.crop[3]).toBeLessThan(s0.crop[3] * 0.6);
   const [cx, cy, cw, ch] = s1.widgets.crop;
-  await page.mouse.move(cx + cw / 2, cy + ch / 2);
-  await page.mouse.down();
-  await page.mouse.move(cx + cw / 2 + 60, cy + ch / 2 + 50, { steps: 6 });
-  await page.mouse.up();
+  await drag(page, [cx + cw / 2, cy + ch / 2], [cx + cw / 2 + 60, cy + ch / 2 + 50]);
   await page.waitForFunction((c) => {
     window.proctex.requestRepaint();
     const s = window.proctex.state();

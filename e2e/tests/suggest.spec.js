@@ -6,7 +6,7 @@ const { test } = require('@playwright/test');
 const { execFileSync } = require('child_process');
 const path = require('path');
 const {
-  expect, openApp, state, waitFrames, grab, innerSquare, reveal, clickWidget, suggestionsFor, suggestionsForFile, CLI, ROOT,
+  expect, openApp, state, waitFrames, drag, grab, innerSquare, reveal, clickWidget, suggestionsFor, suggestionsForFile, CLI, ROOT,
 } = require('./helpers');
 
 const patternOf = (json) => {
@@ -194,10 +194,7 @@ test("a structured model's sliders change the image", async ({ page }) => {
   // Drag the scale slider's knob to the rail's left end (finer pattern).
   const params = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   const scale0 = params.model.pattern.scale;
-  await page.mouse.move(x + 50, y + h / 2);
-  await page.mouse.down();
-  await page.mouse.move(x + 2, y + h / 2, { steps: 8 });
-  await page.mouse.up();
+  await drag(page, [x + 50, y + h / 2], [x + 2, y + h / 2], 8);
   await waitFrames(page, 4);
   const after = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
   expect(after.model.pattern.scale).toBeLessThan(scale0);

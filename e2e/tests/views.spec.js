@@ -2,7 +2,7 @@
 // tile-period outline, and the plots.
 const { test } = require('@playwright/test');
 const {
-  expect, openApp, state, waitFrames, grab, channelStats, clickWidget, innerSquare,
+  expect, openApp, state, waitFrames, drag, grab, channelStats, clickWidget, innerSquare,
 } = require('./helpers');
 
 for (const shape of ['sphere', 'cube']) {
@@ -20,10 +20,7 @@ for (const shape of ['sphere', 'cube']) {
     const corner = channelStats(await grab(page, [Math.ceil(x) + 2, Math.floor(y + h) - 22, 20, 20]));
     for (const c of corner) expect(Math.abs(c.mean - 28)).toBeLessThan(3);
     // Orbit: drag turns the object, the wheel moves the camera.
-    await page.mouse.move(x + w / 2, y + h / 2);
-    await page.mouse.down();
-    await page.mouse.move(x + w / 2 + 120, y + h / 2 + 40, { steps: 6 });
-    await page.mouse.up();
+    await drag(page, [x + w / 2, y + h / 2], [x + w / 2 + 120, y + h / 2 + 40]);
     await page.mouse.wheel(0, 300);
     await waitFrames(page, 5);
     const s1 = await state(page);
