@@ -8,17 +8,19 @@ Prints:
   choices), and how many change their choice at some seed;
 - each run's chosen renders over the speck limit (1.5× the photo's own fraction with one pixel
   added to both, `devset::speck_ratio`);
-- the nearer-render rule with its margin averaged over the runs (offline, a stand-in for a
-  margin measured on as many realisations): where the rule ran in a run (the noise model led by
-  score), the classifier's nearest family first when the mean of the patch's margins over the
-  runs where it ran exceeds the threshold, else the noise model; labelled over every
-  patch-seed, and the stochastic patch-seeds moved off the noise model, per threshold, against
-  the runs' own margins at the same thresholds.
+- the nearer-render rule replayed (`devset_nearer_render_cv`) with its margin averaged over the
+  runs (offline, a stand-in for a margin measured on as many realisations): where the rule ran
+  in a run (the noise model led by score), the mean of the patch's margins over the runs where
+  it ran takes the run's margin's place; structured patch-seeds labelled and stochastic ones
+  served, per threshold, against the runs' own margins at the same thresholds.
 
 Usage: tools/devset_seeds.py RUN.jsonl RUN.jsonl ...
 """
 import json
+import math
 import sys
+
+from devset_nearer_render_cv import rows_of, tally
 
 SPECK_LIMIT = 1.5
 NEARER_RENDER_MARGIN = 1.4801  # retrieve::rules::NEARER_RENDER_MARGIN
@@ -37,15 +39,6 @@ def load(path):
         for c in p["choices"]:
             patches[(p["entry"]["file"], c["patch"])] = (p["entry"], c)
     return summary, patches
-
-
-def margin(c):
-    d = c["nearer_render_distances"]
-    return None if d is None else d[0] - d[1]
-
-
-def nearest_family(c):
-    return next(x for x in c["classifier"] if x != "noise")
 
 
 def main():
@@ -82,29 +75,26 @@ def main():
             if ratio > SPECK_LIMIT:
                 print(f"  {path}: {f} {patch} {c['chosen']} {ratio:.2f}")
     print("\nthe nearer-render rule, its margin per run / averaged over the runs:")
-    print("  threshold  labelled (of patch-seeds)  stochastic patch-seeds off the noise model")
-    total = len(keys) * len(runs)
+    print("  threshold  structured labelled, stochastic served (of patch-seeds)")
+    paths = sys.argv[1:]
+    per_run = [rows_of(p) for p in paths]
+    recorded = {}
+    for rows in per_run:
+        for photo, _, c in rows:
+            if math.isfinite(c["margin"]):
+                recorded.setdefault((photo, c["patch"]), []).append(c["margin"])
+    mean = {k: sum(m) / len(m) for k, m in recorded.items()}
+    averaged = [rows_of(p, {(photo, c["patch"]): mean.get((photo, c["patch"]), -math.inf)
+                            for photo, _, c in rows})
+                for p, rows in zip(paths, per_run)]
+    structured = sum(labels != ["noise"] for rows in per_run for _, labels, _ in rows)
+    stochastic = sum(len(rows) for rows in per_run) - structured
     for t in THRESHOLDS:
         out = []
-        for averaged in (False, True):
-            labelled = off = 0
-            for k in runs[0][1]:
-                ms = [m for m in (margin(r[1][k][1]) for r in runs) if m is not None]
-                for _, patches in runs:
-                    e, c = patches[k]
-                    m = margin(c)
-                    if m is None:
-                        chosen = c["chosen"]
-                    else:
-                        m = sum(ms) / len(ms) if averaged else m
-                        chosen = nearest_family(c) if m > t else "noise"
-                    if e["category"] == "structured":
-                        labelled += chosen in e["families"]
-                    else:
-                        off += chosen != "noise" and c["chosen"] == "noise"
-            out.append(f"{labelled}/{total} {off}")
-        print(f"  {t:9.4f}  {out[0]:>12} / {out[1]:<12}")
-
+        for runs_rows in (per_run, averaged):
+            labelled, served = (sum(x) for x in zip(*(tally(rows, t) for rows in runs_rows)))
+            out.append(f"{labelled}/{structured}, {served}/{stochastic}")
+        print(f"  {t:9.4f}  {out[0]:>18} / {out[1]}")
 
 if __name__ == "__main__":
     main()
