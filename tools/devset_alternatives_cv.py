@@ -1,27 +1,30 @@
 #!/usr/bin/env python3
-"""The order of the ranking after its first family (retrieve::Suggester::ranked), cross-validated
+"""The order of the ranking after its first row (retrieve::Suggester::ranked), cross-validated
 on the development set, offline.
 
 The ranking fits the classifier's first three families and scores each (the blend of structure
-and texture distance, the classifier's term, the margin); the best score is the first family.
-The noise model's score is its texture distance moved onto the best family's scale; it comes
-first when that score is no larger than the best family's (never on a photo with a dark network,
-DARK_NETWORK_SKEWNESS). Every number is in the run's JSON (`ranking` scores, `classifier`,
-`photo_cues`), so the orders below need no new analysis, and the first model is the same in
-every one of them: only which families follow it, hence the top three, differ.
+and texture distance, the classifier's term, the margin). Which row comes first (the best
+family, the noise model, or the classifier's nearest family by the render-null and nearer-render
+rules) is taken from the run as recorded: every order below keeps it, so the labelled and served
+rates are the run's by construction, and only which rows follow it, hence the top three, differ.
+Every number is in the run's JSON (`ranking` scores, `classifier`), so no new analysis is needed.
 
-Orders compared (the families after the first / the noise model when it is not first):
-  score, score            every candidate by its score (before 2026-12-01)
-  classifier, score       the other fitted families in the classifier's order; the noise model
-                          keeps the place its score gives it among them
-  score, after            the families by score; the noise model after the fitted families
+Orders compared (the fitted families after the first / the noise model when it is not first):
   classifier, after       the classifier's order; the noise model after the fitted families
+                          (the product since 2026-12-01)
+  classifier, score       the classifier's order; the noise model where its score puts it
+  score, after            the families by score; the noise model after the fitted families
+  score, score            every candidate by its score (before 2026-12-01)
+Where the noise model is first, the best family by score follows it, then the others in the
+order named.
 
 Protocol: 4 folds by photo (devset::fold_of); for each held-out fold the order with the most
 structured patches having a labelled family among the first three on the other folds (ties: the
-earlier in the list above), scored on the held-out fold.
+earlier in the list above, the product first), scored on the held-out fold. Several runs (the
+whole protocol at other seeds, `--first-seed`) are pooled: a photo's patches of every run fall in
+its fold.
 
-Usage: tools/devset_alternatives_cv.py RUN.jsonl
+Usage: tools/devset_alternatives_cv.py RUN.jsonl [RUN.jsonl...]
 """
 import json
 import sys
@@ -29,8 +32,8 @@ import sys
 from devset_classifier_weight_cv import DARK_NETWORK_SKEWNESS, FITTED, FOLDS, SKEWNESS
 from devset_occam_cv import fold_of, ranking_rows
 
-ORDERS = [("score", "score"), ("classifier", "score"), ("score", "after"),
-          ("classifier", "after")]
+ORDERS = [("classifier", "after"), ("classifier", "score"), ("score", "after"),
+          ("score", "score")]
 
 
 def patches(photos):
@@ -47,15 +50,18 @@ def patches(photos):
 
 
 def order(pt, families, noise):
-    """The first FITTED + 1 rows (the fitted families and the noise model) under an order."""
+    """The first FITTED + 1 rows (the fitted families and the noise model) under an order, the
+    run's first row kept first."""
     f = pt["fitted"]
+    first = pt["run"][0]
     by_score = sorted(f, key=lambda n: f[n])
-    best = by_score[0]
+    # The first family: the run's first row, or where the noise model is first the best by score.
+    lead = by_score[0] if first == "noise" else first
     if families == "classifier":
-        fams = [best] + [n for n in pt["classifier"] if n != best and n in f]
+        fams = [lead] + [n for n in pt["classifier"] if n in f and n != lead]
     else:
-        fams = by_score
-    if not pt["dark"] and pt["noise"] <= f[best]:
+        fams = [lead] + [n for n in by_score if n != lead]
+    if first == "noise":
         return ["noise"] + fams
     if noise == "after" or pt["dark"]:
         return fams + ["noise"]
@@ -81,13 +87,15 @@ def pick(pts):
 
 
 def main():
-    photos = [json.loads(l)["photo"] for l in open(sys.argv[1]) if '"photo"' in l]
-    pts = patches(photos)
+    pts = []
+    for run in sys.argv[1:]:
+        photos = [json.loads(l)["photo"] for l in open(run) if '"photo"' in l]
+        pts += patches(photos)
     for o in ORDERS:
         agree = sum(order(pt, *o) == pt["run"] for pt in pts)
-        print(f"{o[0]:>10}, {o[1]:<5}: reproduces the run's first four rows on {agree}/{len(pts)} "
-              "patches; whole set (for reading) labelled first {}/{}, top three {}/{}".format(
-                  tally(pts, o)[0], tally(pts, o)[2], tally(pts, o)[1], tally(pts, o)[2]))
+        lab, top3, ns = tally(pts, o)
+        print(f"{o[0]:>10}, {o[1]:<5}: reproduces the runs' first four rows on {agree}/{len(pts)} "
+              f"patches; whole set (for reading) labelled first {lab}/{ns}, top three {top3}/{ns}")
     pooled = [0, 0, 0]
     for k in range(FOLDS):
         train = [pt for pt in pts if fold_of(pt["file"], FOLDS) != k]
@@ -96,8 +104,8 @@ def main():
         t = tally(test, o)
         b = tally(test, ORDERS[0])
         pooled = [a + x for a, x in zip(pooled, t)]
-        print(f"fold {k}: chose {o}; held out top three {t[1]}/{t[2]} (by score: {b[1]}/{b[2]}), "
-              f"labelled first {t[0]}")
+        print(f"fold {k}: chose {o}; held out top three {t[1]}/{t[2]} (the product's order: "
+              f"{b[1]}/{b[2]}), labelled first {t[0]}")
     print(f"held-out folds pooled: top three {pooled[1]}/{pooled[2]}, labelled first "
           f"{pooled[0]}/{pooled[2]}; the whole set's choice {pick(pts)}")
 

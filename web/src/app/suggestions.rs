@@ -188,10 +188,10 @@ impl ProctexApp {
                 let texture = row
                     .distance
                     .map_or("fitting…".into(), |d| format!("{d:.3}"));
-                // The noise model and the families the classifier puts first come first: the best
-                // by its fitted render and the classifier's opinion, the others in the
-                // classifier's order; the other families follow in that order too
-                // (`Suggester::ranked`), their scores their structure distances.
+                // The noise model and the families the classifier puts first come first, those
+                // by the scores of their fitted renders and the classifier's opinion; the other
+                // families follow in the classifier's order (`Suggester::ranked`), their scores
+                // their structure distances.
                 let compared = row.render_ordered;
                 let mut tip = format!(
                     "{}: score {:.3} (lower is nearer; {})\ntexture distance {texture}",

@@ -210,7 +210,7 @@ pub struct SuggestionRow {
     /// the list (see `retrieve::Suggester::pending`).
     #[serde(default)]
     pub skipped: bool,
-    /// One of the candidates whose fitted renders order the list (the others follow by the
+    /// One of the candidates whose fitted renders order the list (the others follow in the
     /// classifier's order; see `retrieve::Suggester::ranked`).
     #[serde(default)]
     pub render_ordered: bool,

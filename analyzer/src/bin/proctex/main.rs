@@ -306,7 +306,7 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
             "candidates, the best first (score: for the {n} patterns the family classifier puts \
              first, {s:.1} × structure + {t:.1} × texture distance + {c} × half its class's \
              distance in the classifier beyond the nearest's × the photo's self distance + \
-             margin, the best of them first and the others in the classifier's order, the noise \
+             margin, the best of them first and the others by their scores, the noise \
              model first or after them by its texture distance against the best, unless the \
              classifier's margin for its nearest family over the first candidate's class is \
              larger on the photo than on that candidate's render by more than {null}, and for a \
