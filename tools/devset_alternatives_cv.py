@@ -11,16 +11,18 @@ Every number is in the run's JSON (`ranking` scores, `classifier`), so no new an
 
 Orders compared (the fitted families after the first / the noise model when it is not first):
   classifier, after       the classifier's order; the noise model after the fitted families
-                          (the product since 2026-12-01)
+                          (the product from 2026-12-01 to 2026-12-06)
   classifier, score       the classifier's order; the noise model where its score puts it
   score, after            the families by score; the noise model after the fitted families
+                          (the product since 2026-12-06)
   score, score            every candidate by its score (before 2026-12-01)
 Where the noise model is first, the best family by score follows it, then the others in the
 order named.
 
 Protocol: 4 folds by photo (devset::fold_of); for each held-out fold the order with the most
 structured patches having a labelled family among the first three on the other folds (ties: the
-earlier in the list above, the product first), scored on the held-out fold. Several runs (the
+earlier in the list above: the product of the day it was run again, 2026-12-06, first), scored
+on the held-out fold. Several runs (the
 whole protocol at other seeds, `--first-seed`) are pooled: a photo's patches of every run fall in
 its fold.
 
