@@ -106,7 +106,7 @@ def main():
         t = tally(test, o)
         b = tally(test, ORDERS[0])
         pooled = [a + x for a, x in zip(pooled, t)]
-        print(f"fold {k}: chose {o}; held out top three {t[1]}/{t[2]} (the product's order: "
+        print(f"fold {k}: chose {o}; held out top three {t[1]}/{t[2]} (the first order listed: "
               f"{b[1]}/{b[2]}), labelled first {t[0]}")
     print(f"held-out folds pooled: top three {pooled[1]}/{pooled[2]}, labelled first "
           f"{pooled[0]}/{pooled[2]}; the whole set's choice {pick(pts)}")
