@@ -22,9 +22,8 @@ order named.
 Protocol: 4 folds by photo (devset::fold_of); for each held-out fold the order with the most
 structured patches having a labelled family among the first three on the other folds (ties: the
 earlier in the list above: the product of the day it was run again, 2026-12-06, first), scored
-on the held-out fold. Several runs (the
-whole protocol at other seeds, `--first-seed`) are pooled: a photo's patches of every run fall in
-its fold.
+on the held-out fold. Several runs (the whole protocol at other seeds, `--first-seed`) are
+pooled: a photo's patches of every run fall in its fold.
 
 Usage: tools/devset_alternatives_cv.py RUN.jsonl [RUN.jsonl...]
 """
