@@ -3,7 +3,8 @@
 //! `skewness` cue ([`proctex::cues::dark_skewness`]) reads: its skewness, the skewness of its
 //! finer bands, the balance of dark against bright lines by the Hessian's eigenvalues, and the
 //! share of its darkest pixels lying in long connected components (`network*`, `full*`), also
-//! with hysteresis (`hyst*`: grown through the next darkest pixels).
+//! with hysteresis (`hyst*`: grown through the next darkest pixels), and how line-like its
+//! strongest dark structures are (`linear*`, `fulllinear*`: lines against round pits).
 //!
 //! Prints TSV: file, patch name (as the yardstick names it), category, labels, then the
 //! statistics in the order of `NAMES`.
@@ -15,7 +16,7 @@ mod lab_common;
 use proctex::cues::{blur, detrended_luminance};
 use proctex::gabor::SIZE;
 
-const NAMES: [&str; 20] = [
+const NAMES: [&str; 26] = [
     "skewness",
     "skew_fine1",
     "skew_fine1.5",
@@ -36,6 +37,12 @@ const NAMES: [&str; 20] = [
     "fullhyst10_20_32",
     "fullhyst10_25_64",
     "fullhyst5_20_32",
+    "linear1_5",
+    "linear1.5_5",
+    "linear2_5",
+    "linear1_2",
+    "fulllinear1_5",
+    "fulllinear2_5",
 ];
 
 fn moment3(v: &[f32]) -> f32 {
@@ -48,14 +55,12 @@ fn moment3(v: &[f32]) -> f32 {
     (v.iter().map(|&x| (x as f64 - m).powi(3)).sum::<f64>() / n / var.powf(1.5)) as f32
 }
 
-/// (Σ dark-line strength − Σ bright-line strength) / their sum, from the Hessian of the map
-/// smoothed at `sigma`: a dark line curves up across and not along (λ₁ > |λ₂|), a bright one
-/// down; blobs and step edges give little of either.
-fn dark_lines(map: &[f32], sigma: f32) -> f32 {
-    let n = SIZE;
+/// The Hessian's eigenvalues (λ₁ ≥ λ₂) at every inner pixel of `map` (side `n`) smoothed at
+/// `sigma`.
+fn hessian_eigenvalues(map: &[f32], n: usize, sigma: f32) -> Vec<(f64, f64)> {
     let s = blur(map, n, sigma);
     let at = |x: usize, y: usize| s[y * n + x] as f64;
-    let (mut dark, mut bright) = (0.0, 0.0);
+    let mut out = Vec::with_capacity(n * n);
     for y in 1..n - 1 {
         for x in 1..n - 1 {
             let xx = at(x + 1, y) - 2.0 * at(x, y) + at(x - 1, y);
@@ -64,12 +69,61 @@ fn dark_lines(map: &[f32], sigma: f32) -> f32 {
                 (at(x + 1, y + 1) - at(x - 1, y + 1) - at(x + 1, y - 1) + at(x - 1, y - 1)) / 4.0;
             let mean = (xx + yy) / 2.0;
             let r = (((xx - yy) / 2.0).powi(2) + xy * xy).sqrt();
-            let (l1, l2) = (mean + r, mean - r);
-            dark += (l1 - l2.abs()).max(0.0);
-            bright += (-l2 - l1.abs()).max(0.0);
+            out.push((mean + r, mean - r));
         }
     }
+    out
+}
+
+/// (Σ dark-line strength − Σ bright-line strength) / their sum, from the Hessian of the map
+/// smoothed at `sigma`: a dark line curves up across and not along (λ₁ > |λ₂|), a bright one
+/// down; blobs and step edges give little of either.
+fn dark_lines(map: &[f32], sigma: f32) -> f32 {
+    let (mut dark, mut bright) = (0.0, 0.0);
+    for (l1, l2) in hessian_eigenvalues(map, SIZE, sigma) {
+        dark += (l1 - l2.abs()).max(0.0);
+        bright += (-l2 - l1.abs()).max(0.0);
+    }
     ((dark - bright) / (dark + bright).max(1e-12)) as f32
+}
+
+/// How line-like the strongest dark structures of `map` (side `n`) smoothed at `sigma` are: over
+/// the pixels whose larger Hessian eigenvalue λ₁ (the curvature across a dark line or blob) is in
+/// its top `top` share, the mean of (λ₁ − max(λ₂, 0)) / λ₁ (1: a line, curving up across and
+/// not along; 0: a round pit, curving up both ways).
+fn dark_linearity(map: &[f32], n: usize, sigma: f32, top: f32) -> f32 {
+    let eig = hessian_eigenvalues(map, n, sigma);
+    let mut l1: Vec<f64> = eig.iter().map(|e| e.0).collect();
+    l1.sort_by(|a, b| a.total_cmp(b));
+    let k = ((1.0 - top as f64) * l1.len() as f64) as usize;
+    let thr = l1[k.min(l1.len() - 1)].max(1e-12);
+    let (mut sum, mut count) = (0.0, 0usize);
+    for &(a, b) in &eig {
+        if a >= thr {
+            sum += (a - b.max(0.0)) / a;
+            count += 1;
+        }
+    }
+    (sum / count.max(1) as f64) as f32
+}
+
+/// The quadrant's own luminance at full resolution (its centre square, at most 256 px), minus
+/// its blur at 24 px; its side.
+fn full_map(photo: &proctex::input::Photo) -> (Vec<f32>, usize) {
+    let side = photo.width.min(photo.height).min(256) as usize;
+    let (x0, y0) = (
+        (photo.width as usize - side) / 2,
+        (photo.height as usize - side) / 2,
+    );
+    let mut lum = vec![0f32; side * side];
+    for y in 0..side {
+        for x in 0..side {
+            let c = photo.pixels[(y0 + y) * photo.width as usize + x0 + x];
+            lum[y * side + x] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        }
+    }
+    let shading = blur(&lum, side, 24.0);
+    (lum.iter().zip(&shading).map(|(a, b)| a - b).collect(), side)
 }
 
 /// The share of the darkest `fraction` of the fine band (the map minus its blur at 3 px) that
@@ -123,20 +177,7 @@ fn full(photo: &proctex::input::Photo, fraction: f32, extent: usize) -> f32 {
 
 /// [`hysteresis_n`] on the photo's own pixels, as [`full`].
 fn full_hysteresis(photo: &proctex::input::Photo, seed: f32, grow: f32, extent: usize) -> f32 {
-    let side = photo.width.min(photo.height).min(256) as usize;
-    let (x0, y0) = (
-        (photo.width as usize - side) / 2,
-        (photo.height as usize - side) / 2,
-    );
-    let mut lum = vec![0f32; side * side];
-    for y in 0..side {
-        for x in 0..side {
-            let c = photo.pixels[(y0 + y) * photo.width as usize + x0 + x];
-            lum[y * side + x] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
-        }
-    }
-    let shading = blur(&lum, side, 24.0);
-    let map: Vec<f32> = lum.iter().zip(&shading).map(|(a, b)| a - b).collect();
+    let (map, side) = full_map(photo);
     hysteresis_n(&map, side, seed, grow, extent)
 }
 
@@ -174,6 +215,18 @@ fn main() {
             full_hysteresis(&p.photo, 0.10, 0.20, 32),
             full_hysteresis(&p.photo, 0.10, 0.25, 64),
             full_hysteresis(&p.photo, 0.05, 0.20, 32),
+            dark_linearity(&map, SIZE, 1.0, 0.05),
+            dark_linearity(&map, SIZE, 1.5, 0.05),
+            dark_linearity(&map, SIZE, 2.0, 0.05),
+            dark_linearity(&map, SIZE, 1.0, 0.02),
+            {
+                let (m, side) = full_map(&p.photo);
+                dark_linearity(&m, side, 1.0, 0.05)
+            },
+            {
+                let (m, side) = full_map(&p.photo);
+                dark_linearity(&m, side, 2.0, 0.05)
+            },
         ];
         let v: Vec<String> = v.iter().map(|x| format!("{x:.4}")).collect();
         format!("{}\t{}", lab_common::patch_columns(p, *i), v.join("\t"))

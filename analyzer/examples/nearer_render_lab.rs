@@ -20,7 +20,7 @@ use proctex::analyze::Options;
 use proctex::db::Db;
 use proctex::noise::Tile;
 use proctex::render::{Prepared, View, render_prepared};
-use proctex::retrieve::{Refinement, classify, nearer_render_margin, suggest_with};
+use proctex::retrieve::nearer_render_margin;
 use proctex::scattering::{SIDE, features, standardised_distance};
 use proctex::structure::{FinalFit, fit_structured};
 use std::time::Instant;
@@ -35,12 +35,9 @@ fn main() {
     let db = Db::shipped();
     let opts = Options::default();
     let lines = proctex::parallel::map_in_order(&patches, |p| {
-        let ranked = suggest_with(db, &p.photo, &opts, Refinement::default(), &|_, _| true);
-        let nearest = classify(&p.photo).iter().find_map(|(c, _)| *c);
-        let noise = ranked.iter().find(|s| s.name == "noise");
-        let family = nearest.and_then(|k| ranked.iter().find(|s| s.name == k.name()));
+        let (noise, family) = lab_common::ranking_with_nearest(&p.photo, &opts);
         let tile = Tile::new_2d(opts.seed);
-        match (noise.and_then(|s| s.preview.as_ref()), family) {
+        match (noise.as_ref(), family.as_ref()) {
             (Some(noise), Some(family)) => {
                 let fast = family
                     .preview

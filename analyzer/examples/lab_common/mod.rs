@@ -1,5 +1,6 @@
 //! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`, `corpus_lab`,
-//! `coarse_lab`, `descriptor_parts`, `null_gate_lab`, `ranked_renders`, `scale_sweep`): the quadrant patches of the labelled
+//! `coarse_lab`, `descriptor_parts`, `null_gate_lab`, `ranked_renders`, `scale_sweep`, `nearer_render_lab`,
+//! `scale_ladder_lab`): the quadrant patches of the labelled
 //! photos, a quadrant as the ranking sees it, and the photo-like augmentation of a clean pattern.
 
 // Not every laboratory fits a discriminant.
@@ -86,6 +87,30 @@ pub fn save_png(photo: &Photo, path: &std::path::Path) {
         image::Rgb(c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8))
     });
     img.save(path).unwrap();
+}
+
+/// `photo`'s automatic ranking (default refinement, every family fitted), with the noise
+/// model's fitted params and the candidate of the classifier's nearest family: what the
+/// nearer-render rule compares (`nearer_render_lab`, `scale_ladder_lab`).
+// Only the nearer-render laboratories compare the nearest family with the noise model.
+#[allow(dead_code)]
+pub fn ranking_with_nearest(
+    photo: &Photo,
+    opts: &proctex::analyze::Options,
+) -> (
+    Option<proctex::params::Params>,
+    Option<proctex::retrieve::Suggestion>,
+) {
+    use proctex::retrieve::{Refinement, classify, suggest_with};
+    let db = proctex::db::Db::shipped();
+    let ranked = suggest_with(db, photo, opts, Refinement::default(), &|_, _| true);
+    let nearest = classify(photo).iter().find_map(|(c, _)| *c);
+    let noise = ranked
+        .iter()
+        .find(|s| s.name == "noise")
+        .and_then(|s| s.preview.clone());
+    let family = nearest.and_then(|k| ranked.into_iter().find(|s| s.name == k.name()));
+    (noise, family)
 }
 
 /// The four quadrants of every photo in the development set at `dir`.
