@@ -5,7 +5,7 @@
 //! nearer to the photo than its fitted scale. For every quadrant of a photo set: the automatic
 //! ranking (default refinement, seed 1), the classifier's nearest family, and the margin of the
 //! noise model's render against the first round of that family's final fit
-//! (`structure::FinalFit`, what the product compares) with its refined pattern's scale times
+//! (`structure::FirstRound::amplitude_fit`, what the product compares) with its refined pattern's scale times
 //! each factor of `FACTORS`. Prints TSV: file, patch, category, labels, then the margin at each
 //! factor, then the largest of them and the factor that gave it
 //! (`tools/devset_nearer_render_cv.py RUN --margins TSV COLUMN` scores a column as the rule's).
@@ -18,7 +18,7 @@ use proctex::analyze::Options;
 use proctex::db::Db;
 use proctex::noise::Tile;
 use proctex::retrieve::nearer_render_margin;
-use proctex::structure::FinalFit;
+use proctex::structure::FirstRound;
 
 /// The pattern's scale factors tried (1: the product's).
 const FACTORS: [f32; 4] = [1.0, 1.5, 2.0, 3.0];
@@ -41,23 +41,16 @@ fn main() {
                     .map(|&f| {
                         let mut pattern = pattern.clone();
                         pattern.scale *= f;
-                        let fit = FinalFit::new(db, &p.photo, &pattern, &opts, *swapped);
-                        let first: Vec<usize> = (0..fit.amplitudes()).collect();
-                        let first: Vec<_> = first.iter().map(|&k| fit.amplitude(db, k)).collect();
-                        let params = fit.finish(first).params;
+                        let params = FirstRound::new(db, &p.photo, &pattern, &opts, *swapped)
+                            .amplitude_fit()
+                            .params;
                         nearer_render_margin(&p.photo, noise, &params, &tile)
                     })
                     .collect();
-                let (best, factor) =
-                    margins
-                        .iter()
-                        .zip(FACTORS)
-                        .fold(
-                            (f64::NEG_INFINITY, 1.0),
-                            |a, (&m, f)| {
-                                if m > a.0 { (m, f) } else { a }
-                            },
-                        );
+                // The largest margin and its factor (the first of equal ones).
+                let k =
+                    (0..FACTORS.len()).fold(0, |b, k| if margins[k] > margins[b] { k } else { b });
+                let (best, factor) = (margins[k], FACTORS[k]);
                 let m: Vec<String> = margins.iter().map(|m| format!("{m:.4}")).collect();
                 format!("{}\t{best:.4}\t{factor}", m.join("\t"))
             }

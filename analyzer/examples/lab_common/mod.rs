@@ -1,7 +1,7 @@
 //! What the development-set laboratories share (`retrieval_lab`, `family_lda_lab`, `corpus_lab`,
-//! `coarse_lab`, `descriptor_parts`, `null_gate_lab`, `ranked_renders`, `scale_sweep`, `nearer_render_lab`,
-//! `scale_ladder_lab`): the quadrant patches of the labelled
-//! photos, a quadrant as the ranking sees it, and the photo-like augmentation of a clean pattern.
+//! `coarse_lab`, `descriptor_parts`, `null_gate_lab`, `ranked_renders`, `scale_sweep`,
+//! `nearer_render_lab`, `scale_ladder_lab`): the quadrant patches of the labelled photos, a
+//! quadrant as the ranking sees it, and the photo-like augmentation of a clean pattern.
 
 // Not every laboratory fits a discriminant.
 #[allow(dead_code)]
