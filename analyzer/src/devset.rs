@@ -178,16 +178,7 @@ fn noise_numbers(ranking: &[crate::retrieve::Suggestion]) -> usize {
         .unwrap_or(0)
 }
 
-/// Most specks a render may have, in units of its photo's own ([`speck_ratio`]).
-pub const SPECK_LIMIT: f64 = 1.5;
-
-/// A render's speck fraction over its photo's, each with one pixel added (a photo without
-/// specks does not divide by zero, and one speck pixel in a render of a speckless photo is
-/// a ratio of 2, not infinity).
-pub fn speck_ratio(render: f64, photo: f64, pixels: usize) -> f64 {
-    let one = 1.0 / pixels.max(1) as f64;
-    (render + one) / (photo + one)
-}
+pub use crate::specks::{SPECK_LIMIT, speck_ratio};
 
 /// One candidate of a patch's ranking (a [`crate::retrieve::Suggestion`]'s numbers).
 #[derive(Clone, Debug, serde::Serialize)]

@@ -15,6 +15,7 @@ use crate::noise::Tile;
 use crate::params::Model;
 use crate::pattern::Pattern;
 use crate::render::{Fields, View, render_with_fields};
+use crate::specks::{SPECK_LIMIT, speck_fraction, speck_ratio};
 
 /// Fits the ramp, residual and output tone curve of `pattern` to an analysis-size photo (see
 /// the module docs).
@@ -108,16 +109,15 @@ impl FirstRound {
         self.fit.finish(self.first.clone())
     }
 
-    /// The rest of step 6 (the rougher variants at the chosen amplitude, the best with its tone
-    /// curve and its grain matched, [`FinalFit::match_grain`]): [`fit_structured`], bit for bit.
+    /// The rest of step 6 (the rougher variants at the chosen amplitude, then the best with its
+    /// tone curve and its grain matched whose render keeps within the speck limit,
+    /// [`FinalFit::finish_whole`]): [`fit_structured`], bit for bit.
     pub fn complete(self, db: &crate::db::Db) -> Analysis {
         let FirstRound { fit, first } = self;
         let chosen = fit.chosen(&first);
         let rest: Vec<usize> = (1..=fit.variants()).collect();
         let rest = crate::parallel::map_in_order(&rest, |&k| fit.variant(db, k, chosen));
-        let mut a = fit.finish(first.into_iter().chain(rest));
-        fit.match_grain(&mut a);
-        a
+        fit.finish_whole(first.into_iter().chain(rest).collect())
     }
 }
 
@@ -155,6 +155,9 @@ pub struct FinalFit {
 struct Scoring {
     /// The photo's own distances (top half against bottom half): the scores' units.
     unit: Distances,
+    /// The photo's speck fraction ([`crate::specks::speck_fraction`]): what a finished fit's
+    /// render is held to ([`FinalFit::speck_clean`]).
+    specks: f64,
     reference: Reference,
     /// The base's render fields (every amplitude of the refined pattern shares them).
     fields: Fields,
@@ -197,6 +200,7 @@ impl FinalFit {
             };
             Scoring {
                 unit,
+                specks: speck_fraction(photo),
                 reference: Reference::of(photo),
                 fields: fields_of(&base, photo),
                 alphas,
@@ -241,6 +245,18 @@ impl FinalFit {
             &self.balance,
             s.alphas[k],
         )
+    }
+
+    /// Both rounds' scored fits in task order (the amplitudes, then the rougher variants at the
+    /// amplitude chosen among them), in parallel on native: what [`FinalFit::finish_whole`]
+    /// chooses among, for the laboratories and tests that look at each.
+    pub fn scored_fits(&self, db: &crate::db::Db) -> Vec<Scored> {
+        let first: Vec<usize> = (0..self.amplitudes()).collect();
+        let first = crate::parallel::map_in_order(&first, |&k| self.amplitude(db, k));
+        let chosen = self.chosen(&first);
+        let rest: Vec<usize> = (1..=self.variants()).collect();
+        let rest = crate::parallel::map_in_order(&rest, |&k| self.variant(db, k, chosen));
+        first.into_iter().chain(rest).collect()
     }
 
     /// The first round's choice: the index of its best score (the first of equal ones).
@@ -288,13 +304,74 @@ impl FinalFit {
     /// [`FinalFit::finish`] before its tone curve: the best of the scored fits (the base when
     /// there was nothing to choose).
     pub fn best(&self, scored: impl IntoIterator<Item = Scored>) -> Analysis {
-        let mut best: Option<Scored> = None;
-        for r in scored {
-            if best.as_ref().is_none_or(|b| r.score < b.score) {
-                best = Some(r);
-            }
+        let scored: Vec<Scored> = scored.into_iter().collect();
+        self.order(&scored)
+            .first()
+            .map_or_else(|| self.base.clone(), |&i| scored[i].analysis.clone())
+    }
+
+    /// The scored fits' indices (in `scored`'s order) by score, the first of equal scores
+    /// first: the order in which [`FinalFit::finish_whole`] tries them.
+    pub fn order(&self, scored: &[Scored]) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..scored.len()).collect();
+        order.sort_by(|&a, &b| scored[a].score.total_cmp(&scored[b].score));
+        order
+    }
+
+    /// Whether the whole fit tries its scored fits against the speck limit
+    /// ([`FinalFit::finish_whole`]): only when there are two or more to choose from.
+    pub fn tries(&self, scored: usize) -> bool {
+        self.scoring.is_some() && scored > 1
+    }
+
+    /// Whether `a` (finished: its tone curve fitted, its grain matched) renders with the user's
+    /// seed at the photo's size within [`SPECK_LIMIT`] of the photo's own speck fraction;
+    /// true when there is nothing to compare ([`FinalFit::tries`]).
+    pub fn speck_clean(&self, a: &Analysis) -> bool {
+        let Some(s) = self.scoring.as_ref() else {
+            return true;
+        };
+        let render = Photo {
+            width: self.photo.width,
+            height: self.photo.height,
+            pixels: render_seed(&self.photo, &a.params, 0, None),
+        };
+        speck_ratio(speck_fraction(&render), s.specks, render.pixels.len()) <= SPECK_LIMIT
+    }
+
+    /// The whole fit's end ([`fit_structured`]): the scored fits of both rounds (in task order)
+    /// tried by score, each finished ([`FinalFit::finish`], [`FinalFit::match_grain`]), and the
+    /// first whose render is [`FinalFit::speck_clean`] kept; where none is, the best by score.
+    ///
+    /// Ours, not a paper's: the yardstick's speck limit made a constraint of the choice that
+    /// step 6 makes by score. The sources of the chosen renders' specks on the development set (joints
+    /// one pixel wide with steps along them; crest networks finer than the photo's cracks;
+    /// docs/devset.md) leave a render over the limit at one amplitude or roughness and within
+    /// it at another of nearly the same score: the metal siding's bottom-left quadrant 4.6× its
+    /// photo's specks at the best score 9.97, 0.6× at the fifth, 10.71; the cracked plaster's
+    /// top-right 1.77× at 3.372, 1.35× at 3.395. No constant is chosen: the limit is the
+    /// yardstick's, the order the score's. The render checked is the user's seed at the photo's
+    /// size, the render the yardstick counts; the scored render before the grain step is no
+    /// proxy for it (3.0× against 4.6×, 11.8× against 0.6× on the siding's candidates).
+    pub fn finish_whole(&self, scored: Vec<Scored>) -> Analysis {
+        let order = self.order(&scored);
+        let finished = |i: Option<usize>| {
+            let mut a = self.finish(i.map(|i| scored[i].clone()));
+            self.match_grain(&mut a);
+            a
+        };
+        if !self.tries(scored.len()) {
+            return finished(order.first().copied());
         }
-        best.map_or_else(|| self.base.clone(), |b| b.analysis)
+        let mut best = None;
+        for &i in &order {
+            let a = finished(Some(i));
+            if self.speck_clean(&a) {
+                return a;
+            }
+            best.get_or_insert(a);
+        }
+        best.expect("two or more fits tried")
     }
 
     /// The renders that the tone curve of `best` ([`FinalFit::best`]) pools: 0 when it gets

@@ -14,9 +14,11 @@ use serde::{Deserialize, Serialize};
 /// Step 6 of one pattern on one photo, task by task: tasks `0..A` are the first round (each
 /// residual amplitude of the refined pattern), tasks `A..A+V` the second (each rougher variant
 /// at the amplitude the first round chose), tasks `A+V..A+V+T` the third (the renders that the
-/// best fit's output tone curve pools, [`FinalFit::tone_render`]). A task's result is the same
-/// wherever it ran ([`run_task`] on a [`FinalFit`] built from the same photo, options and
-/// pattern; [`FitHelper::tone`]), so each is stored as it comes back, in any order.
+/// best fit's output tone curve pools, [`FinalFit::tone_render`]; listed again for the next
+/// fit by score where a whole fit's finished render is over the speck limit,
+/// [`FinalFit::finish_whole`]). A task's result is the same wherever it ran ([`run_task`] on a
+/// [`FinalFit`] built from the same photo, options and pattern; [`FitHelper::tone`]), so each
+/// is stored as it comes back, in any order.
 #[derive(Debug)]
 pub struct FinalFitJob {
     fit: FinalFit,
@@ -25,9 +27,17 @@ pub struct FinalFitJob {
     first: Vec<Option<Scored>>,
     chosen: Option<usize>,
     rest: Vec<Option<Scored>>,
-    /// The best of both rounds once they are stored, and its tone renders.
+    /// The scored fits' order of trial once both rounds are stored ([`FinalFit::order`]) and
+    /// the one tried now: a whole fit tries them until one renders speck clean
+    /// ([`FinalFit::finish_whole`]).
+    order: Vec<usize>,
+    attempt: usize,
+    /// The fit tried now (the best of both rounds first), and its tone renders.
     best: Option<Analysis>,
     tone: Vec<Option<Vec<[f32; 3]>>>,
+    /// A whole fit's first finished trial (kept where none is speck clean) and its result.
+    first_tried: Option<Analysis>,
+    done: Option<Analysis>,
     /// Whether the fit ends with its grain matched ([`FinalFit::match_grain`]): a whole final
     /// fit does, the first round alone ([`FinalFitJob::first_round`]) does not.
     whole: bool,
@@ -72,8 +82,12 @@ impl FinalFitJob {
             first: vec![None; fit.amplitudes()],
             chosen: None,
             rest: vec![None; variants],
+            order: Vec::new(),
+            attempt: 0,
             best: None,
             tone: Vec::new(),
+            first_tried: None,
+            done: None,
             whole,
             fit,
         }
@@ -98,7 +112,10 @@ impl FinalFitJob {
 
     /// The tasks of the current round not stored yet (empty: every task is done, and
     /// [`FinalFitJob::finish`] gives the fit). The second round starts once the first is
-    /// stored whole: its amplitude is chosen then.
+    /// stored whole: its amplitude is chosen then. The third round's tone tasks may be listed
+    /// again, for another fit: a whole fit whose finished render is over the speck limit tries
+    /// the next by score ([`FinalFit::finish_whole`]; [`FinalFitJob::best_params_json`] then
+    /// gives that fit's params).
     pub fn pending(&mut self) -> Vec<usize> {
         let a = self.first.len();
         let first: Vec<usize> = (0..a).filter(|&t| self.first[t].is_none()).collect();
@@ -117,17 +134,69 @@ impl FinalFitJob {
             return rest;
         }
         if self.best.is_none() {
-            let best = self
-                .fit
-                .best(self.first.iter().chain(&self.rest).flatten().cloned());
-            self.tone = vec![None; self.fit.tone_renders(&best) as usize];
-            self.best = Some(best);
+            self.order = self.fit.order(&self.scored());
+            self.attempt = 0;
+            self.try_next();
         }
-        let s = self.scored_tasks();
-        (0..self.tone.len())
-            .filter(|&k| self.tone[k].is_none())
-            .map(|k| s + k)
+        loop {
+            let s = self.scored_tasks();
+            let tone: Vec<usize> = (0..self.tone.len())
+                .filter(|&k| self.tone[k].is_none())
+                .map(|k| s + k)
+                .collect();
+            if !tone.is_empty() || !self.whole || self.done.is_some() {
+                return tone;
+            }
+            // Every tone render of the fit tried now is stored: it is finished and checked.
+            let Some(a) = self.finish_tried() else {
+                return tone;
+            };
+            if !self.fit.tries(self.order.len()) || self.fit.speck_clean(&a) {
+                self.done = Some(a);
+                return Vec::new();
+            }
+            self.first_tried.get_or_insert(a);
+            self.attempt += 1;
+            if self.attempt >= self.order.len() {
+                self.done = self.first_tried.take();
+                return Vec::new();
+            }
+            self.try_next();
+        }
+    }
+
+    /// Both rounds' stored fits, in task order.
+    fn scored(&self) -> Vec<Scored> {
+        self.first
+            .iter()
+            .chain(&self.rest)
+            .flatten()
+            .cloned()
             .collect()
+    }
+
+    /// Makes the fit of trial [`FinalFitJob::attempt`] the one tried now and lists its tone
+    /// renders (the base where nothing was scored).
+    fn try_next(&mut self) {
+        let scored = self.scored();
+        let best = match self.order.get(self.attempt) {
+            Some(&i) => scored[i].analysis.clone(),
+            None => self.fit.best(None),
+        };
+        self.tone = vec![None; self.fit.tone_renders(&best) as usize];
+        self.best = Some(best);
+    }
+
+    /// The fit tried now with its output tone curve and, for a whole fit, its grain matched;
+    /// `None` until its tone renders are stored.
+    fn finish_tried(&self) -> Option<Analysis> {
+        let best = self.best.as_ref()?;
+        let renders: Option<Vec<_>> = self.tone.iter().cloned().collect();
+        let mut a = self.fit.finish_with(best.clone(), renders?);
+        if self.whole {
+            self.fit.match_grain(&mut a);
+        }
+        Some(a)
     }
 
     /// Tasks of the first two rounds (scored fits, JSON); the tone renders' tasks follow.
@@ -135,7 +204,8 @@ impl FinalFitJob {
         self.first.len() + self.rest.len()
     }
 
-    /// The best fit's params as JSON once the third round is listed (for [`FitHelper::tone`]).
+    /// The params of the fit tried now (the best first) as JSON once the third round is listed
+    /// (for [`FitHelper::tone`]).
     pub fn best_params_json(&self) -> Option<String> {
         let best = self.best.as_ref()?;
         Some(serde_json::to_string(&best.params).expect("params serialise"))
@@ -192,17 +262,16 @@ impl FinalFitJob {
     }
 
     /// The fit: the best stored task with its output tone curve (the base when there was
-    /// nothing to choose), as [`FinalFit::finish`] gives it, and for a whole final fit its
-    /// grain matched ([`FinalFit::match_grain`]: `fit_structured`'s result, bit for bit);
-    /// `None` until every task is stored ([`FinalFitJob::pending`] empty).
+    /// nothing to choose), as [`FinalFit::finish`] gives it; for a whole final fit the first
+    /// by score whose render keeps within the speck limit, its grain matched
+    /// ([`FinalFit::finish_whole`]: `fit_structured`'s result, bit for bit). `None` until
+    /// every task is stored and [`FinalFitJob::pending`] has come back empty.
     pub fn finish(&self) -> Option<Analysis> {
-        let best = self.best.as_ref()?;
-        let renders: Option<Vec<_>> = self.tone.iter().cloned().collect();
-        let mut a = self.fit.finish_with(best.clone(), renders?);
         if self.whole {
-            self.fit.match_grain(&mut a);
+            self.done.clone()
+        } else {
+            self.finish_tried()
         }
-        Some(a)
     }
 }
 

@@ -475,3 +475,44 @@ fn the_reports_noise_analysis_is_the_rankings_noise_fit() {
     assert!(!stored.set_noise_analysis(db, &other).unwrap());
     assert!(stored.set_noise_analysis(db, "not json").is_err());
 }
+
+/// A whole final fit whose best render by score is over the speck limit tries the next fits by
+/// score (the tone renders listed again, for each fit's params) and adopts what the native fit
+/// adopts, bit for bit: on the development set's metal siding (its bottom-left quadrant, planks)
+/// the best score's render has 4.6× the photo's specks, the fifth's 0.6×.
+#[test]
+fn a_final_fit_over_the_speck_limit_tries_the_next_in_tasks_as_natively() {
+    let db = Db::shipped();
+    let path = format!(
+        "{}/../../../shared/photos/dev/torcs_metalsiding_256.png",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let p = Photo::decode(&std::fs::read(&path).unwrap()).unwrap();
+    let (w, h) = (p.width / 2, p.height / 2);
+    let photo = p.crop(Crop { x: 0, y: h, w, h }).unwrap();
+    let mut job = ordered_job(db, &photo);
+    let rows = job.rank(db);
+    let i = rows.iter().position(|r| r.name == "planks").unwrap();
+    let whole = serde_json::to_string(&job.report(db, i).unwrap()).unwrap();
+    let (px, pw, ph) = job.prepared();
+    let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+    helper
+        .fit_prepare(db, &job.row_pattern(i).unwrap(), false)
+        .unwrap();
+    assert!(job.begin_fit(db, i).unwrap());
+    let (_, tones) = run_fit_tasks(db, &mut job, &mut helper, false);
+    assert!(
+        tones > proctex::structure::TONE_SEEDS,
+        "{tones} tone renders"
+    );
+    let report = job.fit_report().unwrap();
+    assert_eq!(serde_json::to_string(&report).unwrap(), whole);
+    use proctex::specks::{SPECK_LIMIT, speck_fraction, speck_ratio};
+    let render = proctex::evaluate::render_params_at_photo_size(&report.params, &photo);
+    let ratio = speck_ratio(
+        speck_fraction(&render),
+        speck_fraction(&photo),
+        photo.pixels.len(),
+    );
+    assert!(ratio <= SPECK_LIMIT, "{ratio}");
+}
