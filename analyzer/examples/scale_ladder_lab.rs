@@ -5,8 +5,8 @@
 //! nearer to the photo than its fitted scale. For every quadrant of a photo set: the automatic
 //! ranking (default refinement, seed 1), the classifier's nearest family, and the margin of the
 //! noise model's render against the first round of that family's final fit
-//! (`structure::FirstRound::amplitude_fit`, what the product compares) with its refined pattern's scale times
-//! each factor of `FACTORS`. Prints TSV: file, patch, category, labels, then the margin at each
+//! (`structure::FirstRound::amplitude_fit`, what the product compares) with its refined
+//! pattern's scale times each factor of `FACTORS`. Prints TSV: file, patch, category, labels, then the margin at each
 //! factor, then the largest of them and the factor that gave it
 //! (`tools/devset_nearer_render_cv.py RUN --margins TSV COLUMN` scores a column as the rule's).
 //!

@@ -178,9 +178,12 @@ impl FinalFitJob {
     /// Makes the fit of trial [`FinalFitJob::attempt`] the one tried now and lists its tone
     /// renders (the base where nothing was scored).
     fn try_next(&mut self) {
-        let scored = self.scored();
-        let best = match self.order.get(self.attempt) {
-            Some(&i) => scored[i].analysis.clone(),
+        let stored = |i: usize| {
+            let s = self.first.iter().chain(&self.rest).nth(i)?.as_ref()?;
+            Some(s.analysis.clone())
+        };
+        let best = match self.order.get(self.attempt).and_then(|&i| stored(i)) {
+            Some(a) => a,
             None => self.fit.best(None),
         };
         self.tone = vec![None; self.fit.tone_renders(&best) as usize];
