@@ -69,7 +69,7 @@ fn structure_controls(
         let hi = if i + 1 == n { 1.0 } else { m.ramp[i + 1].at };
         let stop = &mut m.ramp[i];
         ui.horizontal(|ui| {
-            let r = ui.color_edit_button_rgb(&mut stop.rgb);
+            let r = colour_button(ui, &mut stop.rgb);
             rects.push((format!("ramp.{i}.colour"), r));
             let r = ui.add(egui::Slider::new(&mut stop.at, 0.0..=1.0).text("at"));
             stop.at = stop.at.clamp(lo, hi);
@@ -159,7 +159,7 @@ impl ProctexApp {
             ui.label("Colour");
             ui.horizontal(|ui| {
                 ui.label("mean colour");
-                let r = ui.color_edit_button_rgb(&mut params.colour.mean);
+                let r = colour_button(ui, &mut params.colour.mean);
                 rects.push(("mean".into(), r));
             });
             let r = ui.add(
@@ -358,4 +358,18 @@ fn orientation_controls(
     if changed {
         model.orientation = bands;
     }
+}
+
+/// A colour button (egui's picker on click) that writes `rgb` back only when the user changed
+/// it: egui's button converts the colour to HSVA and back on every frame it is drawn, which
+/// moved some colours by a unit in the last place (a photo's mean colour 0.5563771 →
+/// 0.55637705), so merely showing the controls made the params differ from the analysis'
+/// (then the list's best model was not adopted: the params counted as edited).
+fn colour_button(ui: &mut egui::Ui, rgb: &mut [f32; 3]) -> egui::Response {
+    let mut shown = *rgb;
+    let r = ui.color_edit_button_rgb(&mut shown);
+    if r.changed() {
+        *rgb = shown;
+    }
+    r
 }
