@@ -511,17 +511,42 @@ function nearerThenRank(s) {
 
 // Ranks the list (every fit that orders it is stored) and begins its best row's final fit.
 function rankList(s) {
-  const rows = s.job.rank();
-  const thumbs = s.job.thumbnails();
-  // The best row's final fit, in tasks shared with the helpers (its report goes with the list);
-  // the helpers build their own fit of the pattern while this worker builds the job's.
-  const pattern = s.job.rowPattern(0);
-  if (pattern) {
-    beginFit(s, 0, pattern, null, (best) => postSuggestions(s, rows, thumbs, best));
-    fitStep(s);
+  const rows = s.job.rank(); // JSON
+  adoptSpeckClean(s, rows, 0, null);
+}
+
+// The rows of the top three that the automatic choice may adopt in place of a first row whose
+// render is speckier than the photo (`retrieve::SPECK_CLEAN_ROWS`, which the native analysis
+// follows: the same choice, bit for bit).
+const SPECK_CLEAN_ROWS = 3;
+
+// Row `j`'s final fit, in tasks shared with the helpers (its report goes with the list); the
+// helpers build their own fit of the pattern while this worker builds the job's. The first row
+// is adopted as ranked unless it is a family whose render is over the speck limit at every fit;
+// then the next rows of the top three are tried (a family's final fit; the noise model's render
+// checked) and the first clean one is moved to the front. `first`: the first row's report, kept
+// where none is clean. A noise model first is adopted as ranked.
+function adoptSpeckClean(s, rows, j, first) {
+  const last = Math.min(SPECK_CLEAN_ROWS, JSON.parse(rows).length);
+  const post = (index, report) => {
+    const shown = index > 0 ? s.job.promote(index) : rows;
+    postSuggestions(s, shown, s.job.thumbnails(), report);
+  };
+  if (j >= last) {
+    post(0, first);
     return;
   }
-  postSuggestions(s, rows, thumbs, null);
+  const pattern = s.job.rowPattern(j);
+  if (!pattern) {
+    if (j === 0 || s.job.noiseSpeckClean(s.report ?? '')) post(j, null);
+    else adoptSpeckClean(s, rows, j + 1, first);
+    return;
+  }
+  beginFit(s, j, pattern, null, (report) => {
+    if (s.job.fitSpeckClean()) post(j, report);
+    else adoptSpeckClean(s, rows, j + 1, j === 0 ? report : first);
+  });
+  fitStep(s);
 }
 
 // Begins the final fit of ranked row `index` (its `pattern`, `Suggestions.rowPattern`) in

@@ -14,9 +14,11 @@
 //!    noise included) is what makes the noise model and the structured ones comparable, and
 //!    it orders the fitted families ([`TEXTURE_WEIGHT`]); see [`Suggester::suggestions`].
 
+mod adopt;
 mod rank;
 mod rules;
 
+pub use adopt::SPECK_CLEAN_ROWS;
 pub use rank::{nearer_render_margin, self_distance, texture_distance};
 pub use rules::{
     CLASSIFIER_WEIGHT, DARK_NETWORK_SKEWNESS, NEARER_RENDER_MARGIN, NOISE_MODEL_MARGIN,
@@ -127,6 +129,10 @@ pub struct Suggestion {
     /// classifier's nearest family's final fit ([`Suggestion::nearer_render_margin`]); `None`
     /// elsewhere.
     pub nearer_render_distances: Option<(f64, f64)>,
+    /// The automatic choice fitted this row and passed over it: its render is speckier than
+    /// [`crate::specks::SPECK_LIMIT`] times the photo, and a later row of the top three was not
+    /// ([`SPECK_CLEAN_ROWS`]); it now follows that row.
+    pub speckier: bool,
 }
 
 impl Suggestion {
@@ -730,7 +736,7 @@ pub fn analyze_with_model_progress(
         ModelChoice::Kind(k) => Some(k),
         _ => None,
     };
-    let (suggestions, unreduced) = rank_keeping_noise(
+    let (mut suggestions, unreduced) = rank_keeping_noise(
         db,
         photo,
         opts,
@@ -739,6 +745,10 @@ pub fn analyze_with_model_progress(
         asked,
         progress,
     );
+    if choice == ModelChoice::Auto {
+        let analysis = adopt::first_speck_clean(db, photo, opts, &mut suggestions, unreduced);
+        return (analysis, suggestions);
+    }
     let pick = suggestions.iter().find(|s| match choice {
         ModelChoice::Auto => true,
         ModelChoice::Kind(k) => s.name == k.name(),

@@ -14,6 +14,20 @@ pub fn speck_ratio(render: f64, photo: f64, pixels: usize) -> f64 {
     (render + one) / (photo + one)
 }
 
+/// Whether `params` rendered with their own seed at `photo`'s size (one texel a pixel, as
+/// analysed) keep within [`SPECK_LIMIT`] of `photo_fraction`, the photo's own
+/// [`speck_fraction`]: the check that a model's render is no speckier than its photo.
+pub fn within_speck_limit(
+    photo: &Photo,
+    params: &crate::params::Params,
+    photo_fraction: f64,
+) -> bool {
+    use crate::render::{View, render};
+    let rendered = render(params, photo.width, photo.height, &View::default()).to_photo();
+    let pixels = rendered.pixels.len();
+    speck_ratio(speck_fraction(&rendered), photo_fraction, pixels) <= SPECK_LIMIT
+}
+
 /// Robust deviations past which a pixel stands out from a neighbour ([`speck_fraction`]).
 pub const SPECK_DEVIATIONS: f32 = 4.0;
 

@@ -47,7 +47,7 @@ use crate::two_tone::two_tone;
 mod final_fit;
 pub mod grain;
 pub(crate) mod tone;
-pub use final_fit::{FinalFit, FirstRound, Scored, fit_structured, tone_render};
+pub use final_fit::{FinalFit, Finished, FirstRound, Scored, fit_structured, tone_render};
 pub use tone::{TONE_KNOTS, TONE_SEEDS, fit_tone};
 
 /// Stops of a fitted ramp (before merging equal ones).

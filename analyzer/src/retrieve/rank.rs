@@ -271,6 +271,7 @@ impl Suggester {
             preview: Some(noise),
             render_classes: noise_classes,
             nearer_render_distances: None,
+            speckier: false,
         };
         let complete = self.pending().is_empty();
         let order = &self.order;
@@ -298,6 +299,7 @@ impl Suggester {
                     preview: None,
                     render_classes: None,
                     nearer_render_distances: None,
+                    speckier: false,
                 }
             })
             .collect();

@@ -15,7 +15,7 @@ use crate::noise::Tile;
 use crate::params::Model;
 use crate::pattern::Pattern;
 use crate::render::{Fields, View, render_with_fields};
-use crate::specks::{SPECK_LIMIT, speck_fraction, speck_ratio};
+use crate::specks::{speck_fraction, within_speck_limit};
 
 /// Fits the ramp, residual and output tone curve of `pattern` to an analysis-size photo (see
 /// the module docs).
@@ -113,12 +113,35 @@ impl FirstRound {
     /// tone curve and its grain matched whose render keeps within the speck limit,
     /// [`FinalFit::finish_whole`]): [`fit_structured`], bit for bit.
     pub fn complete(self, db: &crate::db::Db) -> Analysis {
+        let (fit, scored) = self.both_rounds(db);
+        fit.finish_whole(scored)
+    }
+
+    /// [`FirstRound::complete`], and whether its render keeps within the speck limit (checked
+    /// whether or not step 6 had fits to choose from: [`FinalFit::finish_whole_checked`]).
+    pub fn complete_checked(self, db: &crate::db::Db) -> Finished {
+        let (fit, scored) = self.both_rounds(db);
+        fit.finish_whole_checked(scored)
+    }
+
+    /// The fit and both rounds' scored fits in task order (the second round's in parallel on
+    /// native).
+    fn both_rounds(self, db: &crate::db::Db) -> (FinalFit, Vec<Scored>) {
         let FirstRound { fit, first } = self;
         let chosen = fit.chosen(&first);
         let rest: Vec<usize> = (1..=fit.variants()).collect();
         let rest = crate::parallel::map_in_order(&rest, |&k| fit.variant(db, k, chosen));
-        fit.finish_whole(first.into_iter().chain(rest).collect())
+        (fit, first.into_iter().chain(rest).collect())
     }
+}
+
+/// A whole final fit ([`FinalFit::finish_whole_checked`]): the analysis, and whether its render
+/// (the user's seed at the photo's size) keeps within [`crate::specks::SPECK_LIMIT`] of the
+/// photo's specks.
+#[derive(Clone, Debug)]
+pub struct Finished {
+    pub analysis: Analysis,
+    pub speck_clean: bool,
 }
 
 /// One scored fit of step 6: its score (lower is better: the render of the user's seed against
@@ -326,19 +349,21 @@ impl FinalFit {
     }
 
     /// Whether `a` (finished: its tone curve fitted, its grain matched) renders with the user's
-    /// seed at the photo's size within [`SPECK_LIMIT`] of the photo's own speck fraction;
-    /// true when there is nothing to compare ([`FinalFit::tries`]).
+    /// seed at the photo's size within [`crate::specks::SPECK_LIMIT`] of the photo's own speck
+    /// fraction; true when there is nothing to compare ([`FinalFit::tries`]).
     pub fn speck_clean(&self, a: &Analysis) -> bool {
-        let Some(s) = self.scoring.as_ref() else {
-            return true;
+        self.scoring.is_none() || self.within_speck_limit(a)
+    }
+
+    /// Whether `a`'s render (the user's seed at the photo's size) keeps within
+    /// [`crate::specks::SPECK_LIMIT`] of the photo's own speck fraction, checked whatever step 6
+    /// had to choose from.
+    pub fn within_speck_limit(&self, a: &Analysis) -> bool {
+        let photo = match self.scoring.as_ref() {
+            Some(s) => *s.specks.get_or_init(|| speck_fraction(&self.photo)),
+            None => speck_fraction(&self.photo),
         };
-        let render = Photo {
-            width: self.photo.width,
-            height: self.photo.height,
-            pixels: render_seed(&self.photo, &a.params, 0, None),
-        };
-        let photo = *s.specks.get_or_init(|| speck_fraction(&self.photo));
-        speck_ratio(speck_fraction(&render), photo, render.pixels.len()) <= SPECK_LIMIT
+        within_speck_limit(&self.photo, &a.params, photo)
     }
 
     /// The whole fit's end ([`fit_structured`]): the scored fits of both rounds (in task order)
@@ -356,6 +381,20 @@ impl FinalFit {
     /// size, the render the yardstick counts; the scored render before the grain step is no
     /// proxy for it (3.0× against 4.6×, 11.8× against 0.6× on the siding's candidates).
     pub fn finish_whole(&self, scored: Vec<Scored>) -> Analysis {
+        self.finish_whole_in(scored, false).analysis
+    }
+
+    /// [`FinalFit::finish_whole`], and whether the fit it keeps renders within the speck limit
+    /// ([`FinalFit::within_speck_limit`]; checked also where step 6 had nothing to try): what
+    /// the automatic choice needs to pass over a family whose render is speckier than the
+    /// photo (`retrieve::SPECK_CLEAN_ROWS`).
+    pub fn finish_whole_checked(&self, scored: Vec<Scored>) -> Finished {
+        self.finish_whole_in(scored, true)
+    }
+
+    /// [`FinalFit::finish_whole`]; `check_untried`: check the fit's render also where step 6
+    /// had fewer than two fits to try (otherwise it counts as clean there, unchecked).
+    fn finish_whole_in(&self, scored: Vec<Scored>, check_untried: bool) -> Finished {
         let order = self.order(&scored);
         let finished = |i: Option<usize>| {
             let mut a = self.finish(i.map(|i| scored[i].clone()));
@@ -363,17 +402,28 @@ impl FinalFit {
             a
         };
         if !self.tries(scored.len()) {
-            return finished(order.first().copied());
+            let analysis = finished(order.first().copied());
+            let speck_clean = !check_untried || self.within_speck_limit(&analysis);
+            return Finished {
+                analysis,
+                speck_clean,
+            };
         }
         let mut best = None;
         for &i in &order {
-            let a = finished(Some(i));
-            if self.speck_clean(&a) {
-                return a;
+            let analysis = finished(Some(i));
+            if self.speck_clean(&analysis) {
+                return Finished {
+                    analysis,
+                    speck_clean: true,
+                };
             }
-            best.get_or_insert(a);
+            best.get_or_insert(analysis);
         }
-        best.expect("two or more fits tried")
+        Finished {
+            analysis: best.expect("two or more fits tried"),
+            speck_clean: false,
+        }
     }
 
     /// The renders that the tone curve of `best` ([`FinalFit::best`]) pools: 0 when it gets

@@ -211,6 +211,10 @@ impl ProctexApp {
                         tip += " (not refined: not among the models compared by their renders)";
                     }
                 }
+                if row.speckier {
+                    tip += "\npassed over by the automatic choice: its render has more isolated \
+                            specks than 1.5× the photo's own, and a model after it has not";
+                }
                 tip += if adopted == Some(i) {
                     "\n(current model)"
                 } else {
@@ -274,12 +278,17 @@ impl ProctexApp {
                 } else {
                     format!("{:.2}", row.score)
                 };
+                // A row passed over for its specks shows its score in the warning colour.
                 painter.text(
                     rect.center_bottom() - egui::vec2(0.0, 7.0),
                     egui::Align2::CENTER_CENTER,
                     score,
                     font,
-                    text,
+                    if row.speckier {
+                        visuals.warn_fg_color
+                    } else {
+                        text
+                    },
                 );
                 let r = r.on_hover_text(tip);
                 self.record(format!("suggestion.{i}"), &r);

@@ -377,6 +377,27 @@ impl Suggestions {
         serde_json::to_string(&r).map_err(js_error)
     }
 
+    /// Whether the final fit (every task stored) renders within the speck limit; false before.
+    #[wasm_bindgen(js_name = fitSpeckClean)]
+    pub fn fit_speck_clean(&self) -> bool {
+        self.job.fit_speck_clean().unwrap_or(false)
+    }
+
+    /// Whether the noise model's analysis renders within the speck limit: `report`'s
+    /// (`analyzeRgba`'s JSON of this crop and seed; empty: none) where it is this job's, else the
+    /// noise model fitted here.
+    #[wasm_bindgen(js_name = noiseSpeckClean)]
+    pub fn noise_speck_clean(&self, report: &str) -> bool {
+        self.job
+            .noise_speck_clean(Some(report).filter(|r| !r.is_empty()))
+    }
+
+    /// Moves ranked row `i` to the front (the automatic choice adopts it in place of the
+    /// speckier rows before it) and returns the rows as JSON.
+    pub fn promote(&mut self, i: usize) -> Result<String, JsValue> {
+        serde_json::to_string(&self.job.promote(i)).map_err(js_error)
+    }
+
     /// The report JSON of ranked candidate `i` fitted at analysis size.
     pub fn report(&self, i: usize) -> Result<String, JsValue> {
         let r = self.job.report(database()?, i).map_err(js_error)?;

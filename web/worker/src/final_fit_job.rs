@@ -38,6 +38,9 @@ pub struct FinalFitJob {
     /// A whole fit's first finished trial (kept where none is speck clean) and its result.
     first_tried: Option<Analysis>,
     done: Option<Analysis>,
+    /// Whether the trials found the fit `done` speck clean (`None`: step 6 had fewer than two
+    /// fits to try, so nothing was checked; [`FinalFitJob::speck_clean`] checks then).
+    tried_clean: Option<bool>,
     /// Whether the fit ends with its grain matched ([`FinalFit::match_grain`]): a whole final
     /// fit does, the first round alone ([`FinalFitJob::first_round`]) does not.
     whole: bool,
@@ -88,6 +91,7 @@ impl FinalFitJob {
             tone: Vec::new(),
             first_tried: None,
             done: None,
+            tried_clean: None,
             whole,
             fit,
         }
@@ -151,14 +155,20 @@ impl FinalFitJob {
             let Some(a) = self.finish_tried() else {
                 return tone;
             };
-            if !self.fit.tries(self.order.len()) || self.fit.speck_clean(&a) {
+            if !self.fit.tries(self.order.len()) {
                 self.done = Some(a);
+                return Vec::new();
+            }
+            if self.fit.speck_clean(&a) {
+                self.done = Some(a);
+                self.tried_clean = Some(true);
                 return Vec::new();
             }
             self.first_tried.get_or_insert(a);
             self.attempt += 1;
             if self.attempt >= self.order.len() {
                 self.done = self.first_tried.take();
+                self.tried_clean = Some(false);
                 return Vec::new();
             }
             self.try_next();
@@ -262,6 +272,17 @@ impl FinalFitJob {
             *slot = Some(r);
         }
         Ok(())
+    }
+
+    /// Whether the whole fit's result renders within the speck limit, as
+    /// `FirstRound::complete_checked` says (checked here where step 6 had nothing to try);
+    /// `None` until [`FinalFitJob::finish`] gives it, or for a first round alone.
+    pub fn speck_clean(&self) -> Option<bool> {
+        let done = self.done.as_ref()?;
+        Some(
+            self.tried_clean
+                .unwrap_or_else(|| self.fit.within_speck_limit(done)),
+        )
     }
 
     /// The fit: the best stored task with its output tone curve (the base when there was

@@ -214,6 +214,11 @@ pub struct SuggestionRow {
     /// classifier's order; see `retrieve::Suggester::ranked`).
     #[serde(default)]
     pub render_ordered: bool,
+    /// Passed over by the automatic choice: its render is speckier than the photo (past the
+    /// speck limit) and a later row of the top three was not, which now comes first (see
+    /// `retrieve::SPECK_CLEAN_ROWS`).
+    #[serde(default)]
+    pub speckier: bool,
 }
 
 /// The automatic model choice of one photo (or crop), run a family at a time so that the
@@ -443,7 +448,61 @@ impl SuggestJob {
             refined: s.refined_distance,
             skipped: s.skipped,
             render_ordered: s.render_ordered,
+            speckier: s.speckier,
         }
+    }
+
+    /// Moves ranked row `i` to the front, the rows before it marked
+    /// [`proctex::retrieve::Suggestion::speckier`]: the automatic choice adopts it in their
+    /// place (`retrieve::SPECK_CLEAN_ROWS`), as the native analysis orders its list. Returns the
+    /// rows as the UI shows them.
+    pub fn promote(&mut self, i: usize) -> Vec<SuggestionRow> {
+        if i < self.ranked.len() {
+            for s in &mut self.ranked[..i] {
+                s.speckier = true;
+            }
+            self.ranked[..=i].rotate_right(1);
+        }
+        (0..self.ranked.len()).map(|i| self.row(i)).collect()
+    }
+
+    /// Whether the final fit begun by [`SuggestJob::begin_fit`] renders within the speck limit
+    /// once every task is stored (`FirstRound::complete_checked`'s flag); `None` before.
+    pub fn fit_speck_clean(&self) -> Option<bool> {
+        self.final_fit.as_ref()?.speck_clean()
+    }
+
+    /// Whether the noise model's analysis of this photo renders within the speck limit (what
+    /// the automatic choice checks where a family's row is passed over for it,
+    /// `retrieve::SPECK_CLEAN_ROWS`): `report_json`'s params where it is this job's analysis
+    /// ([`analyze_rgba`]'s report of the same crop and seed, its world scale back to one texel a
+    /// pixel), else the noise model fitted here.
+    pub fn noise_speck_clean(&self, report_json: Option<&str>) -> bool {
+        #[derive(serde::Deserialize)]
+        struct ReportParams {
+            params: Params,
+        }
+        let reported = report_json
+            .and_then(|j| serde_json::from_str::<ReportParams>(j).ok())
+            .map(|r| r.params)
+            .filter(|p| {
+                p.source.as_ref().is_some_and(|s| {
+                    (s.width, s.height, s.crop) == (self.width, self.height, self.crop)
+                        && (s.analysis_width, s.analysis_height)
+                            == (self.prepared.width, self.prepared.height)
+                }) && p.seed == self.opts.seed
+                    && matches!(p.model, proctex::params::Model::Noise(_))
+            });
+        let params = match reported {
+            Some(mut p) => {
+                p.transform.scale = 1.0;
+                p.source = None;
+                p
+            }
+            None => analyze_prepared(&self.prepared, &self.opts).params,
+        };
+        let photo_specks = proctex::specks::speck_fraction(&self.prepared);
+        proctex::specks::within_speck_limit(&self.prepared, &params, photo_specks)
     }
 
     /// Fits the first ranked row not fitted yet (as the ranking would have fitted it) and

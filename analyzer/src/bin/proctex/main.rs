@@ -336,6 +336,12 @@ fn ranking_text(suggestions: &[Suggestion]) -> String {
                     if *swapped { ", tones swapped" } else { "" }
                 );
             }
+            if s.speckier {
+                ranking += &format!(
+                    "  [passed over: its render has more specks than {}× the photo's]",
+                    proctex::specks::SPECK_LIMIT
+                );
+            }
             ranking += "\n";
         }
     }

@@ -336,6 +336,16 @@ fn run_fit_tasks(
     }
 }
 
+/// Quadrant `i` (top-left, top-right, bottom-left, bottom-right) of development photo `name`.
+fn dev_quadrant(name: &str, i: usize) -> Photo {
+    let path = format!(
+        "{}/../../../shared/photos/dev/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let photo = Photo::decode(&std::fs::read(path).unwrap()).unwrap();
+    proctex::evaluate::quadrants(&photo).unwrap()[i].clone()
+}
+
 /// A photo's RGBA bytes.
 fn rgba_of(photo: &Photo) -> Vec<u8> {
     photo
@@ -370,15 +380,7 @@ fn ordered_job(db: &Db, photo: &Photo) -> SuggestJob {
 #[test]
 fn the_nearer_render_fit_in_tasks_ranks_and_adopts_the_same() {
     let db = Db::shipped();
-    let dev = |name: &str| {
-        let path = format!(
-            "{}/../../../shared/photos/dev/{name}",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let p = Photo::decode(&std::fs::read(&path).unwrap()).unwrap();
-        let (w, h) = (p.width / 2, p.height / 2);
-        p.crop(Crop { x: 0, y: 0, w, h }).unwrap()
-    };
+    let dev = |name: &str| dev_quadrant(name, 0);
     let shipped = |name: &str| {
         let path = format!("{}/../../www/samples/{name}", env!("CARGO_MANIFEST_DIR"));
         Photo::decode(&std::fs::read(path).unwrap()).unwrap()
@@ -483,13 +485,7 @@ fn the_reports_noise_analysis_is_the_rankings_noise_fit() {
 #[test]
 fn a_final_fit_over_the_speck_limit_tries_the_next_in_tasks_as_natively() {
     let db = Db::shipped();
-    let path = format!(
-        "{}/../../../shared/photos/dev/torcs_metalsiding_256.png",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let p = Photo::decode(&std::fs::read(&path).unwrap()).unwrap();
-    let (w, h) = (p.width / 2, p.height / 2);
-    let photo = p.crop(Crop { x: 0, y: h, w, h }).unwrap();
+    let photo = dev_quadrant("torcs_metalsiding_256.png", 2);
     let mut job = ordered_job(db, &photo);
     let rows = job.rank(db);
     let i = rows.iter().position(|r| r.name == "planks").unwrap();
@@ -515,4 +511,54 @@ fn a_final_fit_over_the_speck_limit_tries_the_next_in_tasks_as_natively() {
         photo.pixels.len(),
     );
     assert!(ratio <= SPECK_LIMIT, "{ratio}");
+}
+
+/// Where no fit of the first row's family keeps within the speck limit, the page's flow (the
+/// first row's final fit in tasks, not speck clean; the second's, clean; that row moved to the
+/// front) gives the native automatic choice's list and fit, bit for bit: the development set's
+/// cracked earth (top-left quadrant, seed 1), ridged first by the ranking, cells adopted. The
+/// noise model's render of this photo keeps within the limit, from the app's report or fitted.
+#[test]
+fn a_first_family_speckier_than_the_photo_is_passed_over_in_tasks_as_natively() {
+    use proctex::retrieve::{ModelChoice, Refinement, analyze_with_model};
+    let db = Db::shipped();
+    let photo = dev_quadrant("megaglest_crackedearth_256.png", 0);
+    let opts = Options::default();
+    let (native, suggestions) =
+        analyze_with_model(db, &photo, &opts, ModelChoice::Auto, Refinement::default());
+    let mut job = ordered_job(db, &photo);
+    let rows = job.rank(db);
+    assert_eq!(
+        (rows[0].name.as_str(), rows[1].name.as_str()),
+        ("ridged", "cells")
+    );
+    let (px, pw, ph) = job.prepared();
+    let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
+    let mut fit_row = |job: &mut SuggestJob, i: usize| {
+        helper
+            .fit_prepare(db, &job.row_pattern(i).unwrap(), false)
+            .unwrap();
+        assert!(job.begin_fit(db, i).unwrap());
+        run_fit_tasks(db, job, &mut helper, false);
+        job.fit_report().unwrap()
+    };
+    fit_row(&mut job, 0);
+    assert_eq!(job.fit_speck_clean(), Some(false));
+    let report = fit_row(&mut job, 1);
+    assert_eq!(job.fit_speck_clean(), Some(true));
+    let shown = job.promote(1);
+    let native_rows: Vec<(&str, bool)> = suggestions.iter().map(|s| (s.name, s.speckier)).collect();
+    let shown_rows: Vec<(&str, bool)> = shown
+        .iter()
+        .map(|r| (r.name.as_str(), r.speckier))
+        .collect();
+    assert_eq!(shown_rows, native_rows);
+    assert_eq!(report.params.model, native.params.model);
+    assert_eq!(
+        serde_json::to_string(&report).unwrap(),
+        serde_json::to_string(&job.report(db, 0).unwrap()).unwrap()
+    );
+    let app = serde_json::to_string(&analyze_rgba(&rgba_of(&photo), pw, ph, None, 1).unwrap());
+    assert!(job.noise_speck_clean(Some(&app.unwrap())));
+    assert!(job.noise_speck_clean(None));
 }
