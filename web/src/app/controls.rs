@@ -34,18 +34,17 @@ fn structure_controls(
         pat.rotation_deg = rotation;
     }
     let r = ui.add(
-        egui::Slider::new(&mut pat.scale, 1.0..=512.0)
+        param_slider(&mut pat.scale, 1.0..=512.0)
             .logarithmic(true)
             .text("pattern scale (texels)"),
     );
     rects.push(("pattern.scale".into(), r));
-    let r =
-        ui.add(egui::Slider::new(&mut pat.rotation_deg, -180.0..=180.0).text("pattern rotation °"));
+    let r = ui.add(param_slider(&mut pat.rotation_deg, -180.0..=180.0).text("pattern rotation °"));
     rects.push(("pattern.rotation".into(), r));
     let mut values = pat.vector();
     for (spec, v) in pat.kind.specs().iter().zip(values.iter_mut()) {
         let r = ui
-            .add(egui::Slider::new(v, spec.min..=spec.max).text(spec.name))
+            .add(param_slider(v, spec.min..=spec.max).text(spec.name))
             .on_hover_text(spec.doc);
         rects.push((format!("pattern.{}", spec.name), r));
     }
@@ -71,7 +70,7 @@ fn structure_controls(
         ui.horizontal(|ui| {
             let r = colour_button(ui, &mut stop.rgb);
             rects.push((format!("ramp.{i}.colour"), r));
-            let r = ui.add(egui::Slider::new(&mut stop.at, 0.0..=1.0).text("at"));
+            let r = ui.add(param_slider(&mut stop.at, 0.0..=1.0).text("at"));
             stop.at = stop.at.clamp(lo, hi);
             rects.push((format!("ramp.{i}.at"), r));
         });
@@ -136,14 +135,13 @@ impl ProctexApp {
         egui::ScrollArea::vertical().show(ui, |ui| {
             ui.label("Transform");
             let r = ui.add(
-                egui::Slider::new(&mut params.transform.scale, 0.05..=50.0)
+                param_slider(&mut params.transform.scale, 0.05..=50.0)
                     .logarithmic(true)
                     .text("scale (px per texel)"),
             );
             rects.push(("scale".into(), r));
             let r = ui.add(
-                egui::Slider::new(&mut params.transform.rotation_deg, -180.0..=180.0)
-                    .text("rotation °"),
+                param_slider(&mut params.transform.rotation_deg, -180.0..=180.0).text("rotation °"),
             );
             rects.push(("rotation".into(), r));
             ui.horizontal(|ui| {
@@ -163,7 +161,7 @@ impl ProctexApp {
                 rects.push(("mean".into(), r));
             });
             let r = ui.add(
-                egui::Slider::new(&mut params.colour.contrast, 0.0..=MAX_CONTRAST).text("contrast"),
+                param_slider(&mut params.colour.contrast, 0.0..=MAX_CONTRAST).text("contrast"),
             );
             rects.push(("contrast".into(), r));
             if let Model::Structured(m) = &mut params.model {
@@ -193,7 +191,7 @@ impl ProctexApp {
                     let lo = (1u32 << (j + 1)) as f32 * scale;
                     let hi = (1u32 << (j + 2)) as f32 * scale;
                     let r = ui
-                        .add(egui::Slider::new(w, 0.0..=max).text(format!(
+                        .add(param_slider(w, 0.0..=max).text(format!(
                             "1/{}–1/{} cyc/px",
                             short(hi),
                             short(lo)
@@ -212,7 +210,7 @@ impl ProctexApp {
                 // the valid range.
                 let max = (fine.max(0.05) * 4.0).min(4.0);
                 let r = ui
-                    .add(egui::Slider::new(fine, 0.0..=max).text(format!(
+                    .add(param_slider(fine, 0.0..=max).text(format!(
                         "1/{}–1/{} cyc/px, bounded",
                         short(4.0 * scale),
                         short(2.0 * scale)
@@ -341,7 +339,7 @@ fn orientation_controls(
             // Angles outside [0, 180] (a morph's path) show wrapped; only an edit writes back.
             let mut angle = o.angle_deg.rem_euclid(180.0);
             let r = ui
-                .add(egui::Slider::new(&mut angle, 0.0..=180.0).suffix("°"))
+                .add(param_slider(&mut angle, 0.0..=180.0).suffix("°"))
                 .on_hover_text(hover.clone());
             if r.changed() {
                 o.angle_deg = angle;
@@ -349,7 +347,7 @@ fn orientation_controls(
             }
             rects.push((format!("orient.angle.{j}"), r));
             let r = ui
-                .add(egui::Slider::new(&mut o.strength, 0.0..=1.0).text(format!("band {j}")))
+                .add(param_slider(&mut o.strength, 0.0..=1.0).text(format!("band {j}")))
                 .on_hover_text(hover);
             changed |= r.changed();
             rects.push((format!("orient.strength.{j}"), r));
@@ -372,4 +370,15 @@ fn colour_button(ui: &mut egui::Ui, rgb: &mut [f32; 3]) -> egui::Response {
         *rgb = shown;
     }
     r
+}
+
+/// A slider over a parameter that leaves a value outside its range as it is until the user
+/// drags it: egui's default clamps every value to the range whenever the slider is drawn, which
+/// would change an analysed or imported value without the user touching it (and count as an
+/// edit: then the list's best model is not adopted, as with the colour buttons above).
+fn param_slider<Num: egui::emath::Numeric>(
+    value: &mut Num,
+    range: std::ops::RangeInclusive<Num>,
+) -> egui::Slider<'_> {
+    egui::Slider::new(value, range).clamping(egui::SliderClamping::Edits)
 }
