@@ -258,3 +258,20 @@ test('pasting an image from the clipboard analyses it', async ({ page }) => {
   await dropFile(page, path.join(ROOT, 'www', 'samples', 'stk_blackrock_256.png'), 'paste');
   expect((await state(page)).error).toBeNull();
 });
+
+test('showing the controls edits nothing: a value outside its slider\'s range stays as it is', async ({ page }) => {
+  // egui's sliders clamp to their range whenever drawn unless told not to, and its colour button
+  // writes back its HSVA round trip: either changed params that nobody touched (an undo step;
+  // the list's best model then not adopted over an "edit").
+  await openApp(page);
+  const p = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  p.transform.scale = 120; // the view's slider stops at 50
+  p.colour.mean = [0.6308582, 0.5563771, 0.41046908]; // a colour egui's HSVA round trip moves
+  await page.evaluate((j) => window.proctex.setParams(j), JSON.stringify(p));
+  await waitFrames(page, 5);
+  const shown = JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+  expect(shown.transform.scale).toBe(120);
+  expect(shown.colour.mean).toEqual(p.colour.mean);
+  const { widgets } = await state(page);
+  expect(widgets.scale && widgets.mean).toBeTruthy(); // both drawn
+});
