@@ -498,53 +498,33 @@ function orderStep(s) {
 // and one helper scatters the photo and the noise model's render meanwhile; then the list.
 function nearerThenRank(s) {
   const pattern = s.job.nearerPattern();
-  if (!pattern) return rankList(s);
+  if (!pattern) return rankAndAdopt(s);
   const t0 = performance.now();
   beginFit(s, -1, pattern, null, () => {
     const f = s.fit;
     s.nearer = { ms: performance.now() - t0, tasks: f.tasks, helped: f.helped, scattered: f.scattered };
     [s.fit, s.todo] = [null, []];
-    rankList(s);
+    rankAndAdopt(s);
   }, true);
   fitStep(s);
 }
 
-// Ranks the list (every fit that orders it is stored) and begins its best row's final fit.
-function rankList(s) {
-  const rows = s.job.rank(); // JSON
-  adoptSpeckClean(s, rows, 0, null);
-}
-
-// The rows of the top three that the automatic choice may adopt in place of a first row whose
-// render is speckier than the photo (`retrieve::SPECK_CLEAN_ROWS`, which the native analysis
-// follows: the same choice, bit for bit).
-const SPECK_CLEAN_ROWS = 3;
-
-// Row `j`'s final fit, in tasks shared with the helpers (its report goes with the list); the
-// helpers build their own fit of the pattern while this worker builds the job's. The first row
-// is adopted as ranked unless it is a family whose render is over the speck limit at every fit;
-// then the next rows of the top three are tried (a family's final fit; the noise model's render
-// checked) and the first clean one is moved to the front. `first`: the first row's report, kept
-// where none is clean. A noise model first is adopted as ranked.
-function adoptSpeckClean(s, rows, j, first) {
-  const last = Math.min(SPECK_CLEAN_ROWS, JSON.parse(rows).length);
-  const post = (index, report) => {
-    const shown = index > 0 ? s.job.promote(index) : rows;
-    postSuggestions(s, shown, s.job.thumbnails(), report);
-  };
-  if (j >= last) {
-    post(0, first);
-    return;
-  }
+// Ranks the list and sends it with its first row's final fit (tasks shared with the helpers). A
+// family over the speck limit at every fit is passed over for the next row of the top three that
+// is not (its final fit; the noise model's render checked), moved to the front; none: the first
+// row as ranked (`first`: its report). The native choice, bit for bit (`retrieve::adopt`).
+function rankAndAdopt(s, rows = s.job.rank(), j = 0, first = null) {
+  const post = (i, report) => postSuggestions(s, i > 0 ? s.job.promote(i) : rows, s.job.thumbnails(), report);
+  if (j >= s.job.speckCleanRows()) return post(0, first);
   const pattern = s.job.rowPattern(j);
   if (!pattern) {
     if (j === 0 || s.job.noiseSpeckClean(s.report ?? '')) post(j, null);
-    else adoptSpeckClean(s, rows, j + 1, first);
+    else rankAndAdopt(s, rows, j + 1, first);
     return;
   }
   beginFit(s, j, pattern, null, (report) => {
     if (s.job.fitSpeckClean()) post(j, report);
-    else adoptSpeckClean(s, rows, j + 1, j === 0 ? report : first);
+    else rankAndAdopt(s, rows, j + 1, j === 0 ? report : first);
   });
   fitStep(s);
 }

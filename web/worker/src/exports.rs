@@ -377,6 +377,13 @@ impl Suggestions {
         serde_json::to_string(&r).map_err(js_error)
     }
 
+    /// How many rows the automatic choice may adopt in place of a first family whose render is
+    /// over the speck limit (`retrieve::SPECK_CLEAN_ROWS`; fewer in a shorter list).
+    #[wasm_bindgen(js_name = speckCleanRows)]
+    pub fn speck_clean_rows(&self) -> usize {
+        self.job.speck_clean_rows()
+    }
+
     /// Whether the final fit (every task stored) renders within the speck limit; false before.
     #[wasm_bindgen(js_name = fitSpeckClean)]
     pub fn fit_speck_clean(&self) -> bool {

@@ -389,35 +389,6 @@ impl SuggestJob {
         self.suggester.set_noise_fit(fit);
     }
 
-    /// Stores the ranking's noise fit from `report_json`, the [`analyze_rgba`] report of this
-    /// job's crop and seed, where the ranking works on the analysed photo as it is: the report's
-    /// params less what [`proctex::analyze::analyze_photo_with`] stamps on them (their source,
-    /// and a world scale of 1 there) are the analysis [`SuggestJob::fit_noise`] would run again.
-    /// Returns whether it was stored (`false`: a photo that the ranking reduces, or a report of
-    /// another photo, crop or seed; [`SuggestJob::fit_noise`] fits it then).
-    pub fn set_noise_analysis(
-        &mut self,
-        db: &Db,
-        report_json: &str,
-    ) -> Result<bool, serde_json::Error> {
-        #[derive(serde::Deserialize)]
-        struct ReportParams {
-            params: Params,
-        }
-        let mut params = serde_json::from_str::<ReportParams>(report_json)?.params;
-        let same_photo = params.source.as_ref().is_some_and(|s| {
-            (s.width, s.height, s.crop) == (self.width, self.height, self.crop)
-                && (s.analysis_width, s.analysis_height)
-                    == (self.prepared.width, self.prepared.height)
-        }) && params.transform.scale == 1.0
-            && params.seed == self.opts.seed;
-        if !same_photo {
-            return Ok(false);
-        }
-        params.source = None;
-        Ok(self.suggester.set_noise_analysis(db, params))
-    }
-
     /// Ranks the candidates with the refinement done so far (the families not refined keep
     /// their retrieved pattern). Only the noise model and the families that order the list are
     /// fitted: they decide the order (`retrieve::Suggester::ranked`); [`SuggestJob::fit_next`]
@@ -450,59 +421,6 @@ impl SuggestJob {
             render_ordered: s.render_ordered,
             speckier: s.speckier,
         }
-    }
-
-    /// Moves ranked row `i` to the front, the rows before it marked
-    /// [`proctex::retrieve::Suggestion::speckier`]: the automatic choice adopts it in their
-    /// place (`retrieve::SPECK_CLEAN_ROWS`), as the native analysis orders its list. Returns the
-    /// rows as the UI shows them.
-    pub fn promote(&mut self, i: usize) -> Vec<SuggestionRow> {
-        if i < self.ranked.len() {
-            for s in &mut self.ranked[..i] {
-                s.speckier = true;
-            }
-            self.ranked[..=i].rotate_right(1);
-        }
-        (0..self.ranked.len()).map(|i| self.row(i)).collect()
-    }
-
-    /// Whether the final fit begun by [`SuggestJob::begin_fit`] renders within the speck limit
-    /// once every task is stored (`FirstRound::complete_checked`'s flag); `None` before.
-    pub fn fit_speck_clean(&self) -> Option<bool> {
-        self.final_fit.as_ref()?.speck_clean()
-    }
-
-    /// Whether the noise model's analysis of this photo renders within the speck limit (what
-    /// the automatic choice checks where a family's row is passed over for it,
-    /// `retrieve::SPECK_CLEAN_ROWS`): `report_json`'s params where it is this job's analysis
-    /// ([`analyze_rgba`]'s report of the same crop and seed, its world scale back to one texel a
-    /// pixel), else the noise model fitted here.
-    pub fn noise_speck_clean(&self, report_json: Option<&str>) -> bool {
-        #[derive(serde::Deserialize)]
-        struct ReportParams {
-            params: Params,
-        }
-        let reported = report_json
-            .and_then(|j| serde_json::from_str::<ReportParams>(j).ok())
-            .map(|r| r.params)
-            .filter(|p| {
-                p.source.as_ref().is_some_and(|s| {
-                    (s.width, s.height, s.crop) == (self.width, self.height, self.crop)
-                        && (s.analysis_width, s.analysis_height)
-                            == (self.prepared.width, self.prepared.height)
-                }) && p.seed == self.opts.seed
-                    && matches!(p.model, proctex::params::Model::Noise(_))
-            });
-        let params = match reported {
-            Some(mut p) => {
-                p.transform.scale = 1.0;
-                p.source = None;
-                p
-            }
-            None => analyze_prepared(&self.prepared, &self.opts).params,
-        };
-        let photo_specks = proctex::specks::speck_fraction(&self.prepared);
-        proctex::specks::within_speck_limit(&self.prepared, &params, photo_specks)
     }
 
     /// Fits the first ranked row not fitted yet (as the ranking would have fitted it) and
@@ -815,6 +733,7 @@ impl Refiner {
     }
 }
 
+mod adoption;
 mod nearer;
 #[cfg(test)]
 mod tests;
