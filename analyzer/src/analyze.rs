@@ -14,6 +14,7 @@ use rustfft::num_complex::Complex32;
 
 use crate::histogram::{ChannelStats, RANK_BINS, RankMap};
 use crate::input::{Crop, Photo};
+use crate::lighting::flatten_lighting;
 use crate::noise_tone::{HISTOGRAM_INTERVALS, HistogramCandidate, allocate};
 use crate::orientation;
 use crate::params::{
@@ -48,6 +49,9 @@ pub struct Options {
     /// [`crate::params::NoiseModel::finest_band_gaussian`]); off: Lagae's histogram on the sum
     /// of every band.
     pub fine_gaussian: bool,
+    /// Divide out the photo's lighting gradient before anything else
+    /// ([`crate::lighting::flatten_lighting`]); off (the default): the pixels as they are.
+    pub flatten_lighting: bool,
 }
 
 impl Default for Options {
@@ -63,6 +67,7 @@ impl Default for Options {
             orientation: true,
             tone: true,
             fine_gaussian: true,
+            flatten_lighting: false,
         }
     }
 }
@@ -114,14 +119,16 @@ pub fn analyze_photo(photo: &Photo, opts: &Options) -> Result<Analysis> {
     analyze_photo_with(photo, opts, analyze_prepared)
 }
 
-/// The photo the analysis sees: `opts.crop` of `photo`, checked, reduced to `opts.size` (what
+/// The photo the analysis sees: `opts.crop` of `photo`, checked, reduced to `opts.size`, its
+/// lighting gradient divided out where `opts.flatten_lighting` says (what
 /// [`analyze_photo_with`] hands its analysis).
 pub fn prepare_photo(photo: &Photo, opts: &Options) -> Result<Photo> {
     let (region, reduced) = prepare_regions(photo, opts)?;
     Ok(reduced.or(region).unwrap_or_else(|| photo.clone()))
 }
 
-/// The crop (`None`: the photo itself) and its reduction (`None`: no reduction needed).
+/// The crop (`None`: the photo itself) and its reduction, lighting flattened when the options
+/// say (`None`: neither needed).
 fn prepare_regions(photo: &Photo, opts: &Options) -> Result<(Option<Photo>, Option<Photo>)> {
     opts.validate()?;
     let cropped = match opts.crop {
@@ -131,6 +138,11 @@ fn prepare_regions(photo: &Photo, opts: &Options) -> Result<(Option<Photo>, Opti
     let region = cropped.as_ref().unwrap_or(photo);
     region.check_min_size()?;
     let reduced = region.reduced(opts.size);
+    let reduced = if opts.flatten_lighting {
+        Some(flatten_lighting(reduced.as_ref().unwrap_or(region)))
+    } else {
+        reduced
+    };
     Ok((cropped, reduced))
 }
 

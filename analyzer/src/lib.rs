@@ -17,6 +17,7 @@ pub mod histogram;
 pub mod image_header;
 pub mod input;
 pub mod json;
+pub mod lighting;
 pub mod limits;
 pub mod parallel;
 pub mod radix;

@@ -49,6 +49,9 @@ OPTIONS:
     --isotropic             every noise band isotropic (no fitted orientation), as Lagae
     --no-tone               no output tone curve on the noise model (its channels
                             independent, as Lagae)
+    --flatten-lighting      divide out the photo's lighting gradient first (the plane
+                            through its log luminance): for a photo lit from one side; on
+                            evenly lit photos it usually costs more than it gains
     --model M               auto (default): the nearest of every candidate below, by texture
                             distance; noise: Lagae's noise model; or a structured family:
                             perlin, turbulence, ridged, grid, brick, cells, planks,

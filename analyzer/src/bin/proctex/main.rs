@@ -64,6 +64,7 @@ fn analysis_flag(flag: &str, a: &mut Args, o: &mut Options) -> Result<bool> {
         "--no-periodic" => o.periodic = false,
         "--isotropic" => o.orientation = false,
         "--no-tone" => o.tone = false,
+        "--flatten-lighting" => o.flatten_lighting = true,
         "--estimator" => {
             o.estimator = match a.value(flag)?.as_str() {
                 "lagae" => Estimator::Lagae,
