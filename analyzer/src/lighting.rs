@@ -20,25 +20,19 @@ const FLOOR: f64 = 1.0 / 255.0;
 
 /// `photo` with its lighting gradient divided out: every pixel multiplied by `exp(mean − p)` of
 /// the plane `p` fitted to its log luminance, so that the mean log luminance stays and each
-/// pixel's colour ratios are kept; values clamped to [0, 1].
+/// pixel's colour ratios are kept; values clamped to [0, 1]. Over a full pixel grid the centred
+/// coordinates average zero, so `mean` is the plane's constant term.
 pub fn flatten_lighting(photo: &Photo) -> Photo {
-    let plane = fit_log_luminance(photo);
+    let [_, along_x, along_y] = fit_log_luminance(photo);
     let (w, h) = (photo.width as usize, photo.height as usize);
-    let mut field = Vec::with_capacity(w * h);
-    for y in 0..h {
-        for x in 0..w {
-            let [a, b, c] = basis(x, y, w, h);
-            field.push(plane[0] * a + plane[1] * b + plane[2] * c);
-        }
-    }
-    let mean = field.iter().sum::<f64>() / field.len().max(1) as f64;
     let pixels = photo
         .pixels
         .iter()
-        .zip(&field)
-        .map(|(p, &f)| {
-            let gain = (mean - f).exp() as f32;
-            p.map(|v| (v * gain).clamp(0.0, 1.0))
+        .enumerate()
+        .map(|(i, p)| {
+            let [_, u, v] = basis(i % w.max(1), i / w.max(1), w, h);
+            let gain = (-(along_x * u + along_y * v)).exp() as f32;
+            p.map(|c| (c * gain).clamp(0.0, 1.0))
         })
         .collect();
     Photo {

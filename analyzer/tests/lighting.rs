@@ -4,18 +4,13 @@
 use std::process::Command;
 
 use proctex::analyze::{Options, analyze_photo};
-use proctex::input::Photo;
+use proctex::input::{Crop, Photo};
 
-fn sample(name: &str) -> String {
-    format!("{}/../www/samples/{name}", env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
 
 fn brick_crop() -> Photo {
-    let bytes = std::fs::read(sample("skimage_brick_512.png")).expect("the brick sample");
-    let photo = Photo::decode(&bytes).expect("decodes");
-    photo
-        .crop(proctex::input::Crop::parse("0,0,256,256").unwrap())
-        .unwrap()
+    let photo = common::sample("skimage_brick_512.png");
+    photo.crop(Crop::parse("0,0,256,256").unwrap()).unwrap()
 }
 
 /// `photo` under a lamp to its right: brighter by e^0.8 ≈ 2.2 from the left edge to the right.
@@ -85,7 +80,10 @@ fn the_cli_takes_the_flag() {
             "0,0,256,256",
         ];
         args.extend_from_slice(extra);
-        let photo = sample("skimage_brick_512.png");
+        let photo = format!(
+            "{}/../www/samples/skimage_brick_512.png",
+            env!("CARGO_MANIFEST_DIR")
+        );
         args.push(&photo);
         let o = Command::new(env!("CARGO_BIN_EXE_proctex"))
             .args(&args)
