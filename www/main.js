@@ -507,6 +507,7 @@ window.proctexHost = {
   },
   // The refinement's time budget in seconds (0: none), for the running refinement and the next.
   setRefineBudget: (seconds) => worker.postMessage({ type: 'setRefineBudget', seconds }),
+  setFlattenLighting: (on) => worker.postMessage({ type: 'setFlattenLighting', on }),
   downloadText,
   tileBegin,
   tileRows,

@@ -8,7 +8,8 @@
 // had fetched them all.
 const CACHE = 'proctex';
 const CORE = [
-  './', 'index.html', 'style.css', 'main.js', 'worker.js', 'images.js', 'synthesis.js', 'refiner.js',
+  './', 'index.html', 'style.css', 'main.js', 'worker.js', 'queue.js', 'suggest.js', 'images.js',
+  'synthesis.js', 'refiner.js',
   'manifest.webmanifest',
   'icons/icon-192.png', 'icons/icon-512.png',
   'pkg/proctex_web.js', 'pkg/proctex_web_bg.wasm', 'pkg/proctex_worker.js',

@@ -166,6 +166,7 @@ pub fn analyze_photo_with(
         analysis_width: reduced.width,
         analysis_height: reduced.height,
         estimator: opts.estimator.name().into(),
+        flattened_lighting: opts.flatten_lighting,
     });
     Ok(analysis)
 }

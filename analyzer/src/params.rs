@@ -327,6 +327,10 @@ pub struct Source {
     pub analysis_height: u32,
     /// Which band-weight estimator produced the weights.
     pub estimator: String,
+    /// The photo's lighting gradient was divided out before the analysis
+    /// ([`crate::analyze::Options::flatten_lighting`]); absent: the pixels as they were.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub flattened_lighting: bool,
 }
 
 impl Params {

@@ -99,4 +99,7 @@ fn the_cli_takes_the_flag() {
         plain, flat,
         "the brick crop has a gradient of its own to take out"
     );
+    // The params' provenance says so (and nothing when it is off).
+    assert!(flat.contains("\"flattened_lighting\": true"), "{flat}");
+    assert!(!plain.contains("flattened_lighting"));
 }

@@ -269,6 +269,6 @@ async function dropFile(page, filePath, kind) {
 module.exports = {
   expect, openApp, state, waitFrames, drag, grab, highFrequencyEnergy, gradientEnergy, channelStats,
   cliRender, CLI,
-  innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, suggestionsForFile, ROOT,
-  dropFile,
+  innerSquare, reveal, clickWidget, waitAnalyses, morphRockToGrass, suggestionsFor, suggestionsForFile,
+  suggestionsAfter, tmpFile, ROOT, dropFile,
 };

@@ -4,9 +4,11 @@
 // adopts the best, and a click adopts another.
 const { test } = require('@playwright/test');
 const { execFileSync } = require('child_process');
+const fs = require('fs');
 const path = require('path');
 const {
-  expect, openApp, state, waitFrames, drag, grab, innerSquare, reveal, clickWidget, suggestionsFor, suggestionsForFile, CLI, ROOT,
+  expect, openApp, state, waitFrames, drag, grab, innerSquare, reveal, clickWidget, suggestionsFor, suggestionsForFile,
+  suggestionsAfter, tmpFile, CLI, ROOT,
 } = require('./helpers');
 
 const patternOf = (json) => {
@@ -199,6 +201,50 @@ test('a first family whose render is speckier than the photo is passed over for 
     { stdio: ['ignore', 'pipe', 'ignore'] }).toString());
   expect(cli.model.pattern.kind).toBe('cells');
   expectClose(JSON.parse(await page.evaluate(() => window.proctex.getParams())).model, cli.model, 'model');
+});
+
+test("the lighting option analyses and ranks the crop again with its lighting divided out, as the CLI's --flatten-lighting", async ({ page }) => {
+  // The brick sample's top-left 256² lit from one side (0.6 at the left edge to 1.0 at the
+  // right), written as a PNG that the app gets as pixels and the CLI reads.
+  const { PNG } = require('pngjs');
+  const src = PNG.sync.read(fs.readFileSync(path.join(ROOT, 'www', 'samples', 'skimage_brick_512.png')));
+  const lit = new PNG({ width: 256, height: 256 });
+  for (let y = 0; y < 256; y++) {
+    for (let x = 0; x < 256; x++) {
+      const [i, j] = [(y * 256 + x) * 4, (y * src.width + x) * 4];
+      for (let c = 0; c < 3; c++) lit.data[i + c] = Math.min(255, Math.round(src.data[j + c] * (0.6 + 0.4 * x / 255)));
+      lit.data[i + 3] = 255;
+    }
+  }
+  const file = tmpFile('lit_brick.png');
+  fs.writeFileSync(file, PNG.sync.write(lit));
+  const cli = (...flags) => JSON.parse(execFileSync(CLI, ['analyze', file, '--crop', '0,0,256,256', '--json', ...flags],
+    { stdio: ['ignore', 'pipe', 'ignore'] }).toString());
+  await openApp(page);
+  const params = async () => JSON.parse(await page.evaluate(() => window.proctex.getParams()));
+
+  const plain = await suggestionsForFile(page, file, 256, 256);
+  expect(plain.flatten_lighting).toBe(false);
+  const before = await params();
+  expect(before.source.flattened_lighting).toBeUndefined();
+  // Ticked: the same crop analysed and ranked again, its lighting divided out.
+  const flat = await suggestionsAfter(page, 'the lit brick, lighting evened out', () => clickWidget(page, 'lighting'));
+  expect(flat.flatten_lighting).toBe(true);
+  expect(flat.adopted).toBe(0);
+  const after = await params();
+  expect(after.source.flattened_lighting).toBe(true);
+  expect(after.source.crop).toEqual([0, 0, 256, 256]);
+  // What the app adopted is what the CLI chooses with the option, bit for bit up to 1e-4; the
+  // plain analysis is the CLI's without it.
+  const withOption = cli('--flatten-lighting');
+  expect(withOption.source.flattened_lighting).toBe(true);
+  expectClose(after.model, withOption.model, 'model');
+  expectClose(before.model, cli().model, 'model');
+  expect(JSON.stringify(after.model)).not.toBe(JSON.stringify(before.model));
+  // Unticked: the photo as it is, the same model as the first time.
+  const again = await suggestionsAfter(page, 'the lit brick as it is', () => clickWidget(page, 'lighting'));
+  expect(again.flatten_lighting).toBe(false);
+  expect((await params()).model).toEqual(before.model);
 });
 
 test("a structured model's sliders change the image", async ({ page }) => {

@@ -188,6 +188,8 @@ pub struct Snapshot {
     pub suggestions: Vec<SuggestionRow>,
     /// Suggestions being refined: families done, in all.
     pub suggest_progress: Option<[u32; 2]>,
+    /// The lighting option is on (the photo's lighting gradient divided out).
+    pub flatten_lighting: bool,
     /// Row of the suggestion the current params came from (`None`: edited, or none yet).
     pub adopted: Option<usize>,
     /// Why there are no suggestions, if they failed.
@@ -427,6 +429,7 @@ impl ProctexApp {
                 redo: self.redo.len(),
                 suggestions: self.suggest.rows.clone(),
                 suggest_progress: self.suggest.progress.map(|(d, t)| [d, t]),
+                flatten_lighting: self.flatten_lighting,
                 adopted: self.adopted_row(),
                 suggest_error: self.suggest.error.clone(),
                 tile_progress: self

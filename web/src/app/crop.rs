@@ -155,7 +155,8 @@ impl ProctexApp {
                 crop = whole;
             }
         });
-        if crop != old {
+        let relit = self.lighting_control(ui);
+        if crop != old || relit {
             if let Some(p) = self.photo.as_mut() {
                 p.crop = crop;
             }
@@ -167,5 +168,28 @@ impl ProctexApp {
                 .collect();
             host("analyseCrop", &args);
         }
+    }
+
+    /// The lighting option under the crop: the photo's lighting gradient divided out before
+    /// every analysis from now on (the worker's `analyzeRgba` option, `proctex analyze
+    /// --flatten-lighting`). Returns whether it changed, for the crop to be analysed again.
+    fn lighting_control(&mut self, ui: &mut egui::Ui) -> bool {
+        let r = ui
+            .checkbox(&mut self.flatten_lighting, "Even out lighting")
+            .on_hover_text(
+                "Divide the photo's lighting gradient out before the analysis (the plane \
+                 through its log luminance): for a photo lit from one side, whose texture \
+                 should not carry the light. On evenly lit photos it usually costs more than \
+                 it gains, so it is off by default",
+            );
+        self.record("lighting", &r);
+        if !r.changed() {
+            return false;
+        }
+        host(
+            "setFlattenLighting",
+            &[JsValue::from_bool(self.flatten_lighting)],
+        );
+        true
     }
 }

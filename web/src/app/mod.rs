@@ -184,6 +184,8 @@ pub struct ProctexApp {
     suggest: SuggestState,
     /// The refinement's time budget in seconds (0: none, the evaluation budget alone).
     refine_budget_s: f32,
+    /// Analyses divide the photo's lighting gradient out (the crop panel's option).
+    flatten_lighting: bool,
     /// The pyramid view's raster synthesis.
     pyramid: pyramid::PyramidState,
     /// The solid views' source and the Heeger–Bergen volume.
@@ -321,6 +323,7 @@ impl ProctexApp {
             tile_job: None,
             suggest: SuggestState::default(),
             refine_budget_s: 0.0,
+            flatten_lighting: false,
             pyramid: pyramid::PyramidState::default(),
             solid: solid::SolidState::default(),
             gpu: None,

@@ -117,7 +117,17 @@ impl ProctexApp {
             ui.ctx()
                 .request_repaint_after(std::time::Duration::from_millis(250));
         } else if let (Some(photo), Some(ms)) = (&self.photo, self.analysis_ms) {
-            let r = ui.label(format!("{} — analysed in {ms:.0} ms", photo.name));
+            let flattened = self
+                .analysed
+                .as_ref()
+                .and_then(|p| p.source.as_ref())
+                .is_some_and(|s| s.flattened_lighting);
+            let lighting = if flattened {
+                ", lighting evened out"
+            } else {
+                ""
+            };
+            let r = ui.label(format!("{} — analysed in {ms:.0} ms{lighting}", photo.name));
             self.record("status", &r);
         } else {
             ui.label("Loading the sample photo…");

@@ -9,7 +9,8 @@ use crate::jobs;
 use proctex::params::Params;
 
 /// Worker job: analyses `crop` (`[x, y, w, h]` photo pixels, or empty for all) of an RGBA image
-/// and returns the report (params and plot statistics) as JSON; throws the error's message.
+/// at `seed`, its lighting gradient divided out where `flatten_lighting` says, and returns the
+/// report (params and plot statistics) as JSON; throws the error's message.
 #[wasm_bindgen(js_name = analyzeRgba)]
 pub fn analyze_rgba(
     rgba: &[u8],
@@ -17,9 +18,11 @@ pub fn analyze_rgba(
     height: u32,
     crop: Vec<u32>,
     seed: u32,
+    flatten_lighting: bool,
 ) -> Result<String, JsValue> {
+    let crop = parse_crop(&crop)?;
     let report =
-        jobs::analyze_rgba(rgba, width, height, parse_crop(&crop)?, seed).map_err(js_error)?;
+        jobs::analyze_rgba(rgba, width, height, crop, seed, flatten_lighting).map_err(js_error)?;
     serde_json::to_string(&report).map_err(js_error)
 }
 
@@ -82,8 +85,9 @@ pub struct Suggestions {
 
 #[wasm_bindgen]
 impl Suggestions {
-    /// Retrieval for `crop` (`[x, y, w, h]` or empty) of an RGBA image; throws the error's
-    /// message (no database, bad crop).
+    /// Retrieval for `crop` (`[x, y, w, h]` or empty) of an RGBA image analysed as
+    /// `analyzeRgba` does with the same arguments; throws the error's message (no database,
+    /// bad crop).
     #[wasm_bindgen(constructor)]
     pub fn new(
         rgba: &[u8],
@@ -91,9 +95,11 @@ impl Suggestions {
         height: u32,
         crop: Vec<u32>,
         seed: u32,
+        flatten_lighting: bool,
     ) -> Result<Suggestions, JsValue> {
         let crop = parse_crop(&crop)?;
-        let job = jobs::SuggestJob::new(database()?, rgba, width, height, crop, seed)
+        let db = database()?;
+        let job = jobs::SuggestJob::new(db, rgba, width, height, crop, seed, flatten_lighting)
             .map_err(js_error)?;
         Ok(Suggestions { job })
     }
@@ -574,7 +580,7 @@ fn flat_pairs(pairs: Vec<(usize, usize)>) -> Vec<u32> {
 }
 
 /// The analysis-size photo of the `Suggestions` job that `new Suggestions(rgba, width, height,
-/// crop, seed)` would make (its `preparedPixels` and `preparedSize`), without its retrieval:
+/// crop, seed, flattenLighting)` would make (its `preparedPixels` and `preparedSize`), without its retrieval:
 /// sent to the helpers while this worker fits the noise model. Throws as that job would on a
 /// bad size or crop.
 #[wasm_bindgen]
@@ -594,9 +600,11 @@ impl SuggestionPhoto {
         height: u32,
         crop: Vec<u32>,
         seed: u32,
+        flatten_lighting: bool,
     ) -> Result<SuggestionPhoto, JsValue> {
+        let crop = parse_crop(&crop)?;
         let (pixels, width, height) =
-            jobs::suggestion_photo(rgba, width, height, parse_crop(&crop)?, seed)
+            jobs::suggestion_photo(rgba, width, height, crop, seed, flatten_lighting)
                 .map_err(js_error)?;
         Ok(SuggestionPhoto {
             pixels,

@@ -116,21 +116,20 @@ pub fn model_stats(params: &Params) -> ImageStats {
     image_stats(&render(params, STATS_SIZE, STATS_SIZE, &view).to_photo())
 }
 
-/// Analyses `crop` (photo pixels; `None`: all) of an RGBA image with the default options and
-/// the given seed. Only the crop is converted to floating point, so a 12-megapixel photo with a
-/// small crop costs little more than the crop.
+/// Analyses `crop` (photo pixels; `None`: all) of an RGBA image with the default options, the
+/// given seed and, where `flatten_lighting` says, the photo's lighting gradient divided out
+/// (`proctex analyze --flatten-lighting`). Only the crop is converted to floating point, so a
+/// 12-megapixel photo with a small crop costs little more than the crop.
 pub fn analyze_rgba(
     rgba: &[u8],
     width: u32,
     height: u32,
     crop: Option<[u32; 4]>,
     seed: u32,
+    flatten_lighting: bool,
 ) -> proctex::error::Result<Report> {
     let photo = region(rgba, width, height, crop)?;
-    let opts = Options {
-        seed,
-        ..Options::default()
-    };
+    let opts = suggestion_options(seed, flatten_lighting);
     let analysis = analyze_photo(&photo, &opts)?;
     report(&photo, &opts, analysis.params, width, height, crop)
 }
@@ -251,10 +250,12 @@ impl std::fmt::Debug for SuggestJob {
     }
 }
 
-/// The options a suggestion job analyses with: the defaults at `seed`.
-fn suggestion_options(seed: u32) -> Options {
+/// The options the worker analyses with (a photo's analysis and its suggestion job alike): the
+/// defaults at `seed`, the lighting gradient divided out where `flatten_lighting` says.
+fn suggestion_options(seed: u32, flatten_lighting: bool) -> Options {
     Options {
         seed,
+        flatten_lighting,
         ..Options::default()
     }
 }
@@ -274,11 +275,12 @@ pub fn suggestion_photo(
     height: u32,
     crop: Option<[u32; 4]>,
     seed: u32,
+    flatten_lighting: bool,
 ) -> proctex::error::Result<(Vec<f32>, u32, u32)> {
     let photo = region(rgba, width, height, crop)?;
     Ok(flat_photo(&prepare_photo(
         &photo,
-        &suggestion_options(seed),
+        &suggestion_options(seed, flatten_lighting),
     )?))
 }
 
@@ -291,9 +293,10 @@ impl SuggestJob {
         height: u32,
         crop: Option<[u32; 4]>,
         seed: u32,
+        flatten_lighting: bool,
     ) -> proctex::error::Result<SuggestJob> {
         let photo = region(rgba, width, height, crop)?;
-        let opts = suggestion_options(seed);
+        let opts = suggestion_options(seed, flatten_lighting);
         let reduced = prepare_photo(&photo, &opts)?;
         let suggester = Suggester::new(db, &reduced, &opts, Refinement::default());
         Ok(SuggestJob {
@@ -636,7 +639,9 @@ impl Refiner {
             height,
             pixels: rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
         };
-        let opts = suggestion_options(seed);
+        // The photo comes prepared (its lighting divided out where the job's options said), and
+        // nothing here prepares it again: the options' flag would not be read.
+        let opts = suggestion_options(seed, false);
         let suggester = Suggester::new(db, &photo, &opts, Refinement::default());
         Ok(Refiner {
             ranking_fit: FitHelper::new(suggester.ranking_photo().clone(), opts),

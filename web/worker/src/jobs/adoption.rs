@@ -12,10 +12,10 @@ use super::{SuggestJob, SuggestionRow};
 
 impl SuggestJob {
     /// The params of `report_json` (an [`super::analyze_rgba`] report) where it is this job's
-    /// analysis (the same photo, crop, analysis size and seed), less what
+    /// analysis (the same photo, crop, analysis size, seed and lighting), less what
     /// [`proctex::analyze::analyze_photo_with`] stamps on them: their source, and their world
     /// scale, set back to one texel a pixel and returned beside them (1 where the analysed photo
-    /// is the crop unreduced). `None` for another photo's, crop's or seed's report.
+    /// is the crop unreduced). `None` for another photo's, crop's, seed's or lighting's report.
     fn reported_analysis(
         &self,
         report_json: &str,
@@ -29,6 +29,7 @@ impl SuggestJob {
             (s.width, s.height, s.crop) == (self.width, self.height, self.crop)
                 && (s.analysis_width, s.analysis_height)
                     == (self.prepared.width, self.prepared.height)
+                && s.flattened_lighting == self.opts.flatten_lighting
         }) && params.seed == self.opts.seed;
         if !same_photo {
             return Ok(None);

@@ -53,7 +53,7 @@ fn sample() -> (Vec<u8>, u32, u32) {
 #[test]
 fn crop_analysis_equals_the_cli_crop() {
     let (rgba, w, h) = sample();
-    let report = analyze_rgba(&rgba, w, h, Some([40, 60, 300, 200]), 7).unwrap();
+    let report = analyze_rgba(&rgba, w, h, Some([40, 60, 300, 200]), 7, false).unwrap();
     let photo = Photo::from_rgba8(w, h, &rgba).unwrap();
     let opts = Options {
         seed: 7,
@@ -78,21 +78,75 @@ fn crop_analysis_equals_the_cli_crop() {
     }
 }
 
+/// The sample lit from one side: each pixel times a factor running from 0.6 at the left edge
+/// to 1.0 at the right (`examples/lit_set`'s darkened ramp), rounded back to bytes.
+fn lit_sample() -> (Vec<u8>, u32, u32) {
+    let (mut rgba, w, h) = sample();
+    for (i, px) in rgba.chunks_exact_mut(4).enumerate() {
+        let gain = 0.6 + 0.4 * (i as u32 % w) as f32 / (w - 1) as f32;
+        for c in &mut px[..3] {
+            *c = (*c as f32 * gain).round().min(255.0) as u8;
+        }
+    }
+    (rgba, w, h)
+}
+
+/// With the lighting option the worker analyses a crop as `proctex analyze --flatten-lighting`
+/// does, says so in the params' source, and hands its helpers the same flattened photo as its
+/// suggestion job; a report of the photo as it is (or flattened) is not the noise fit of a job
+/// of the other kind.
+#[test]
+fn the_lighting_option_analyses_as_the_cli_and_reaches_the_suggestions() {
+    let (rgba, w, h) = lit_sample();
+    let crop = Some([0, 0, 256, 256]);
+    let report = analyze_rgba(&rgba, w, h, crop, 1, true).unwrap();
+    let photo = Photo::from_rgba8(w, h, &rgba).unwrap();
+    let opts = Options {
+        crop: Some(Crop {
+            x: 0,
+            y: 0,
+            w: 256,
+            h: 256,
+        }),
+        flatten_lighting: true,
+        ..Options::default()
+    };
+    assert_eq!(report.params, analyze_photo(&photo, &opts).unwrap().params);
+    assert!(report.params.source.as_ref().unwrap().flattened_lighting);
+    let plain = analyze_rgba(&rgba, w, h, crop, 1, false).unwrap();
+    assert!(!plain.params.source.as_ref().unwrap().flattened_lighting);
+    assert_ne!(plain.params.model, report.params.model);
+
+    let db = Db::shipped();
+    let mut flat = SuggestJob::new(db, &rgba, w, h, crop, 1, true).unwrap();
+    let mut as_is = SuggestJob::new(db, &rgba, w, h, crop, 1, false).unwrap();
+    let sent = suggestion_photo(&rgba, w, h, crop, 1, true).unwrap();
+    assert_eq!(flat.prepared(), sent);
+    assert_ne!(as_is.prepared(), sent);
+    let (flat_json, plain_json) = (
+        serde_json::to_string(&report).unwrap(),
+        serde_json::to_string(&plain).unwrap(),
+    );
+    assert!(!as_is.set_noise_analysis(db, &flat_json).unwrap());
+    assert!(!flat.set_noise_analysis(db, &plain_json).unwrap());
+    assert!(flat.set_noise_analysis(db, &flat_json).unwrap());
+}
+
 #[test]
 fn bad_crops_and_buffers_are_errors() {
     let (rgba, w, h) = sample();
-    assert!(analyze_rgba(&rgba, w, h, Some([500, 0, 100, 100]), 1).is_err());
-    assert!(analyze_rgba(&rgba, w, h, Some([0, 0, 0, 100]), 1).is_err());
-    assert!(analyze_rgba(&rgba[4..], w, h, None, 1).is_err());
+    assert!(analyze_rgba(&rgba, w, h, Some([500, 0, 100, 100]), 1, false).is_err());
+    assert!(analyze_rgba(&rgba, w, h, Some([0, 0, 0, 100]), 1, false).is_err());
+    assert!(analyze_rgba(&rgba[4..], w, h, None, 1, false).is_err());
     // Too small to analyse: a clear error, not a panic.
-    let e = analyze_rgba(&rgba, w, h, Some([0, 0, 8, 8]), 1).unwrap_err();
+    let e = analyze_rgba(&rgba, w, h, Some([0, 0, 8, 8]), 1, false).unwrap_err();
     assert!(e.to_string().contains("8"), "{e}");
 }
 
 #[test]
 fn model_statistics_follow_the_photo() {
     let (rgba, w, h) = sample();
-    let r = analyze_rgba(&rgba, w, h, None, 1).unwrap();
+    let r = analyze_rgba(&rgba, w, h, None, 1, false).unwrap();
     // Spectra within 2 dB RMS over the rings the model covers, and within 4.5 dB in each:
     // the model's bands lie an octave apart, and a fit of a smooth photo spectrum leaves a
     // ripple with that period (measured on this sample: 1.6 dB RMS, at most 3.7 dB; the
@@ -117,7 +171,7 @@ fn model_statistics_follow_the_photo() {
 fn suggestions_in_steps_equal_the_cli_ranking() {
     let (rgba, w, h) = sample();
     let db = Db::shipped();
-    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1, false).unwrap();
     // The families refined: the classifier's first three.
     let kinds = proctex::pattern::PatternKind::ALL;
     let steps = proctex::retrieve::RENDER_ORDERED;
@@ -188,11 +242,11 @@ fn suggestions_in_steps_equal_the_cli_ranking() {
 fn families_refined_elsewhere_in_any_order_rank_the_same() {
     let (rgba, w, h) = sample();
     let db = Db::shipped();
-    let mut stepped = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    let mut stepped = SuggestJob::new(db, &rgba, w, h, None, 1, false).unwrap();
     while stepped.step(db) {}
-    let (px, pw, ph) = suggestion_photo(&rgba, w, h, None, 1).unwrap();
+    let (px, pw, ph) = suggestion_photo(&rgba, w, h, None, 1, false).unwrap();
     let mut helper = Refiner::new(db, &px, pw, ph, 1).unwrap();
-    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1, false).unwrap();
     assert_eq!(job.prepared(), (px.clone(), pw, ph));
     // The helper lists the starts as the job does, so it can refine them before the job exists.
     assert_eq!(helper.pending_starts(), job.pending_starts());
@@ -256,7 +310,7 @@ fn families_refined_elsewhere_in_any_order_rank_the_same() {
 fn the_final_fit_in_tasks_anywhere_equals_the_report() {
     let (rgba, w, h) = sample();
     let db = Db::shipped();
-    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
+    let mut job = SuggestJob::new(db, &rgba, w, h, None, 1, false).unwrap();
     while job.step(db) {}
     let rows = job.rank(db);
     let i = rows.iter().position(|r| r.name != "noise").unwrap();
@@ -361,7 +415,16 @@ fn rgba_of(photo: &Photo) -> Vec<u8> {
 
 /// A job on `photo` refined, with the noise model's fit and those that order the list stored.
 fn ordered_job(db: &Db, photo: &Photo) -> SuggestJob {
-    let mut job = SuggestJob::new(db, &rgba_of(photo), photo.width, photo.height, None, 1).unwrap();
+    let mut job = SuggestJob::new(
+        db,
+        &rgba_of(photo),
+        photo.width,
+        photo.height,
+        None,
+        1,
+        false,
+    )
+    .unwrap();
     while job.step(db) {}
     for i in job.order_fits() {
         let json = job.order_fit(db, i);
@@ -449,10 +512,11 @@ fn the_reports_noise_analysis_is_the_rankings_noise_fit() {
     let (rgba, w, h) = sample();
     let db = Db::shipped();
     let crop = Some([0, 0, 256, 256]);
-    let report = serde_json::to_string(&analyze_rgba(&rgba, w, h, crop, 1).unwrap()).unwrap();
-    let mut fitted = SuggestJob::new(db, &rgba, w, h, crop, 1).unwrap();
+    let report =
+        serde_json::to_string(&analyze_rgba(&rgba, w, h, crop, 1, false).unwrap()).unwrap();
+    let mut fitted = SuggestJob::new(db, &rgba, w, h, crop, 1, false).unwrap();
     fitted.fit_noise(db);
-    let mut stored = SuggestJob::new(db, &rgba, w, h, crop, 1).unwrap();
+    let mut stored = SuggestJob::new(db, &rgba, w, h, crop, 1, false).unwrap();
     assert!(stored.set_noise_analysis(db, &report).unwrap());
     let (a, b) = (fitted.rank(db), stored.rank(db));
     assert_eq!(a.len(), b.len());
@@ -468,12 +532,14 @@ fn the_reports_noise_analysis_is_the_rankings_noise_fit() {
         serde_json::to_string(&stored.report(db, noise).unwrap()).unwrap()
     );
     // The whole 512² photo: the ranking reduces it; and another crop's report.
-    let mut whole = SuggestJob::new(db, &rgba, w, h, None, 1).unwrap();
-    let whole_report = serde_json::to_string(&analyze_rgba(&rgba, w, h, None, 1).unwrap()).unwrap();
+    let mut whole = SuggestJob::new(db, &rgba, w, h, None, 1, false).unwrap();
+    let whole_report =
+        serde_json::to_string(&analyze_rgba(&rgba, w, h, None, 1, false).unwrap()).unwrap();
     assert!(!whole.set_noise_analysis(db, &whole_report).unwrap());
-    let other =
-        serde_json::to_string(&analyze_rgba(&rgba, w, h, Some([256, 0, 256, 256]), 1).unwrap())
-            .unwrap();
+    let other = serde_json::to_string(
+        &analyze_rgba(&rgba, w, h, Some([256, 0, 256, 256]), 1, false).unwrap(),
+    )
+    .unwrap();
     assert!(!stored.set_noise_analysis(db, &other).unwrap());
     assert!(stored.set_noise_analysis(db, "not json").is_err());
 }
@@ -558,7 +624,8 @@ fn a_first_family_speckier_than_the_photo_is_passed_over_in_tasks_as_natively() 
         serde_json::to_string(&report).unwrap(),
         serde_json::to_string(&job.report(db, 0).unwrap()).unwrap()
     );
-    let app = serde_json::to_string(&analyze_rgba(&rgba_of(&photo), pw, ph, None, 1).unwrap());
+    let app =
+        serde_json::to_string(&analyze_rgba(&rgba_of(&photo), pw, ph, None, 1, false).unwrap());
     assert!(job.noise_speck_clean(Some(&app.unwrap())));
     assert!(job.noise_speck_clean(None));
 }
