@@ -1,9 +1,13 @@
-//! A set's photos degraded as a camera and its file format degrade a real photo, for measuring
-//! how much the automatic choice depends on that (docs/devset.md, "The photo's camera").
+//! A set's photos degraded as a lamp, a camera and its file format degrade a real photo, for
+//! measuring how much the automatic choice depends on that (docs/devset.md, "The photo's
+//! lighting" and "The photo's camera").
 //!
-//! `cargo run --release -p proctex-analyzer --example degraded_set -- SET OUT MODE AMOUNT`
+//! `cargo run --release -p proctex-analyzer --example degraded_set -- SET OUT MODE AMOUNT…`
 //! writes each photo of SET's manifest to OUT (as PNG, under its own name, with the manifest)
 //! for `proctex fidelity --set OUT`, after one of:
+//! - `ramp LOW HIGH`: every pixel multiplied by a factor running linearly from LOW at the left
+//!   edge to HIGH at the right, in 8-bit sRGB values (clipped at 255, as an over-exposed photo
+//!   is): a lamp to one side of a wall;
 //! - `jpeg Q`: encoded as a baseline JPEG at quality Q (1–100) and decoded again: the 8×8
 //!   blocks and the chroma subsampling of a camera's or a website's file;
 //! - `noise SIGMA`: a Gaussian deviate of SIGMA 8-bit steps added to each channel of each pixel
@@ -55,6 +59,16 @@ fn jpeg(img: &RgbImage, quality: u8) -> RgbImage {
         .to_rgb8()
 }
 
+fn ramp(mut img: RgbImage, low: f64, high: f64) -> RgbImage {
+    let w = img.width().max(2) - 1;
+    for (x, _, p) in img.enumerate_pixels_mut() {
+        let gain = low + (high - low) * x as f64 / w as f64;
+        p.0 =
+            p.0.map(|v| (v as f64 * gain).round_ties_even().clamp(0.0, 255.0) as u8);
+    }
+    img
+}
+
 fn noisy(mut img: RgbImage, sigma: f64, rng: &mut SplitMix) -> RgbImage {
     for p in img.pixels_mut() {
         p.0 =
@@ -65,17 +79,17 @@ fn noisy(mut img: RgbImage, sigma: f64, rng: &mut SplitMix) -> RgbImage {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if args.len() != 4 {
-        eprintln!("usage: degraded_set SET OUT jpeg|noise|blur|scale AMOUNT");
+    let mode = args.get(2).map_or("", String::as_str);
+    let amounts = if mode == "ramp" { 2 } else { 1 };
+    if args.len() != 3 + amounts || !matches!(mode, "ramp" | "jpeg" | "noise" | "blur" | "scale") {
+        eprintln!(
+            "usage: degraded_set SET OUT (ramp LOW HIGH | jpeg Q | noise SIGMA | blur SIGMA \
+             | scale F)"
+        );
         std::process::exit(2);
     }
     let (set, out) = (Path::new(&args[0]), Path::new(&args[1]));
     let amount: f64 = args[3].parse().expect("AMOUNT");
-    let mode = args[2].as_str();
-    if !matches!(mode, "jpeg" | "noise" | "blur" | "scale") {
-        eprintln!("degraded_set: MODE is jpeg, noise, blur or scale, not `{mode}`");
-        std::process::exit(2);
-    }
     std::fs::create_dir_all(out).expect("OUT");
     let manifest = std::fs::read_to_string(set.join("manifest.tsv")).expect("SET/manifest.tsv");
     std::fs::write(out.join("manifest.tsv"), &manifest).expect("write the manifest");
@@ -85,6 +99,7 @@ fn main() {
         let file = line.split('\t').next().unwrap_or_default();
         let img = image::open(set.join(file)).expect("a photo").to_rgb8();
         let img = match mode {
+            "ramp" => ramp(img, amount, args[4].parse().expect("HIGH")),
             "jpeg" => jpeg(&img, amount.clamp(1.0, 100.0) as u8),
             "noise" => noisy(img, amount, &mut rng),
             "scale" => {
@@ -98,5 +113,6 @@ fn main() {
             .expect("write a photo");
         written += 1;
     }
-    println!("{written} photos, {mode} {amount}, in {}", out.display());
+    let what = args[2..].join(" ");
+    println!("{written} photos, {what}, in {}", out.display());
 }

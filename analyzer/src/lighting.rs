@@ -7,8 +7,9 @@
 //! exemplars as evenly lit. The gradient is modelled as the least-squares plane of the log
 //! luminance over the analysed image (a multiplicative field, three coefficients, no scale to
 //! choose). Measured on the development set darkened from one side by a ramp of 0.6 → 1.0
-//! (`examples/lit_set`; docs/devset.md, "The photo's lighting"): the automatic choice's labelled
-//! structured quadrants 70 → 76 of 100, 23 → 3 of the 208 choices moved by the ramp. On the
+//! (`examples/degraded_set`, `ramp`; docs/devset.md, "The photo's lighting"): the automatic
+//! choice's labelled structured quadrants 70 → 76 of 100, 23 → 3 of the 208 choices moved by the
+//! ramp. On the
 //! evenly lit photos it costs 78 / 73 / 78 → 75 / 69 / 69 (seeds 1–3): their own large-scale
 //! variation is material, and the plane takes it too. So it is off by default; a quadratic
 //! (a vignette as well) cost more still (70 at seed 1).
@@ -134,7 +135,7 @@ mod tests {
         // The colour ratios of each pixel are kept.
         let p = flat.pixels[40 * 128 + 100];
         assert!((p[1] / p[0] - 0.9).abs() < 1e-4 && (p[2] / p[0] - 0.8).abs() < 1e-4);
-        // A ramp linear in intensity (the lit_set laboratory's) is taken out nearly as well.
+        // A ramp linear in intensity (the degraded_set laboratory's) is taken out nearly as well.
         let linear = photo(128, 96, |x, y| {
             let t = tone(x, y) * (0.6 + 0.4 * x as f32 / 127.0);
             [t, t, t]

@@ -79,7 +79,7 @@ fn crop_analysis_equals_the_cli_crop() {
 }
 
 /// The sample lit from one side: each pixel times a factor running from 0.6 at the left edge
-/// to 1.0 at the right (`examples/lit_set`'s darkened ramp), rounded back to bytes.
+/// to 1.0 at the right (`examples/degraded_set`'s darkened ramp), rounded back to bytes.
 fn lit_sample() -> (Vec<u8>, u32, u32) {
     let (mut rgba, w, h) = sample();
     for (i, px) in rgba.chunks_exact_mut(4).enumerate() {
