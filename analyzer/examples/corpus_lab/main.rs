@@ -20,7 +20,13 @@
 //!   `CORPUS_LAB_TOPO_LOG=1` takes their signed log1p); `CORPUS_LAB_DIAG_RIDGE=1` scales the ridge by each feature's own
 //!   within-class variance instead of their mean (the same as standardising the features);
 //!   `CORPUS_LAB_NO_LINES=1` zeroes the two straight-line cues (the cues' costliest).
-//!   `CORPUS_LAB_AUG=half` also trains on each texture's quadrants at half its size.
+//!   `CORPUS_LAB_AUG=half` also trains on each texture's quadrants at half its size;
+//!   `CORPUS_LAB_AUG=blur:S1,S2,…` on each quadrant blurred by a Gaussian of each σ (the
+//!   product's table: `blur:0.5,1`); `CORPUS_LAB_HELD_BLUR=σ` scores the held-out corpus quadrants
+//!   blurred by σ as well, and the setting is chosen by the mean of the sharp and the blurred
+//!   criteria; `CORPUS_LAB_SETTING=H,RIDGE` holds the setting instead of choosing it. DEVDIR may
+//!   list several sets, comma-separated (the development set and its degraded copies,
+//!   `examples/degraded_set`): each is scored.
 //!   `CORPUS_LAB_KNN=K` measures each class's distance as the mean squared distance to its K
 //!   nearest training views in the discriminant's space instead of to its mean. With
 //!   `CORPUS_LAB_DUMP=1` each line also has the patch's margin (the noise class's distance minus
@@ -44,8 +50,10 @@
 #[path = "../lab_common/mod.rs"]
 mod lab_common;
 mod sweeps;
+mod views;
 
 use sweeps::{bootstrap, dump_features, prior_sweep};
+use views::{augmented, describe_blurred, held_blur};
 
 use lab_common::lda::{fit, project, scores};
 use proctex::cues::{CUE_NAMES, CUES, cues};
@@ -154,29 +162,11 @@ struct Texture {
     file: String,
     class: usize,
     quadrants: Vec<Descriptor>,
-    /// Training-only views ([`augmented`]; none unless `CORPUS_LAB_AUG=half`).
+    /// Training-only views ([`augmented`]; none unless `CORPUS_LAB_AUG` asks).
     extra: Vec<Descriptor>,
-}
-
-/// The training-only views of a texture, with `CORPUS_LAB_AUG=half` (measured, not kept): the
-/// quadrants of the texture reduced to half its size (the material at another scale, as photos
-/// show it), where they are at least 64 pixels wide. Held out on the corpus (4 folds by
-/// texture, scored on the original quadrants only) the nearest family was labelled on 607 of
-/// 908 structured quadrants against 602, the noise class kept on 1251 of 1452 against 1259; on
-/// the development set the nearest family on 77 of 100 against 73; but in the product (the
-/// table trained so, the fidelity protocol in full) labelled 56 → 55 and top three 92 → 90 of
-/// 100 (docs/devset.md).
-fn augmented(photo: &Photo) -> Vec<Descriptor> {
-    if !std::env::var("CORPUS_LAB_AUG").is_ok_and(|v| v == "half") {
-        return Vec::new();
-    }
-    let side = photo.width.max(photo.height) / 2;
-    match photo.reduced(side) {
-        Some(half) if half.width.min(half.height) >= 128 => {
-            lab_common::quadrants(&half).iter().map(describe).collect()
-        }
-        _ => Vec::new(),
-    }
+    /// The quadrants blurred by [`held_blur`] (none without it): scored when held out, never
+    /// trained on.
+    soft: Vec<Descriptor>,
 }
 
 /// The labelled textures, without those of a class whose every texture is a variant of one
@@ -197,26 +187,32 @@ fn load_corpus(labels: &str, dir: &str, names: &[&str]) -> Vec<Texture> {
 }
 
 fn load_labelled(labels: &str, dir: &str, names: &[&str]) -> Vec<Texture> {
-    let mut out = Vec::new();
-    for line in std::fs::read_to_string(labels).unwrap().lines() {
-        if line.starts_with('#') {
-            continue;
-        }
-        let mut it = line.split('\t');
-        let (file, family) = (it.next().unwrap(), it.next().unwrap_or("").trim());
-        let Some(class) = names.iter().position(|n| *n == family) else {
-            continue;
-        };
+    let text = std::fs::read_to_string(labels).unwrap();
+    let lines: Vec<(&str, usize)> = text
+        .lines()
+        .filter(|line| !line.starts_with('#'))
+        .filter_map(|line| {
+            let mut it = line.split('\t');
+            let (file, family) = (it.next().unwrap(), it.next().unwrap_or("").trim());
+            Some((file, names.iter().position(|n| *n == family)?))
+        })
+        .collect();
+    // Described on every core: the descriptions are the laboratory's time.
+    proctex::parallel::map_in_order(&lines, |&(file, class)| {
         let photo = Photo::decode(&std::fs::read(format!("{dir}/{file}")).unwrap()).unwrap();
-        let quadrants = lab_common::quadrants(&photo).iter().map(describe).collect();
-        out.push(Texture {
+        let parts = lab_common::quadrants(&photo);
+        let quadrants = parts.iter().map(describe).collect();
+        let soft = held_blur().map_or(Vec::new(), |sigma| {
+            parts.iter().map(|q| describe_blurred(q, sigma)).collect()
+        });
+        Texture {
             file: file.to_string(),
             class,
             quadrants,
             extra: augmented(&photo),
-        });
-    }
-    out
+            soft,
+        }
+    })
 }
 
 /// The development set's photos as training textures (`CORPUS_LAB_DEV_FOLDS`):
@@ -240,6 +236,7 @@ fn dev_textures(dev: &[(lab_common::Patch, Descriptor)], names: &[&str]) -> Vec<
                 class,
                 quadrants: vec![d.clone()],
                 extra: Vec::new(),
+                soft: Vec::new(),
             }),
         }
     }
@@ -407,6 +404,20 @@ struct HeldOut {
     stochastic: usize,
     /// Stochastic quadrants with the noise class first.
     noise_kept: usize,
+    /// The same counts over the blurred quadrants ([`Texture::soft`]), in the same order.
+    soft: [usize; 4],
+}
+
+impl HeldOut {
+    /// The rate of the label as nearest family plus the rate of the noise class kept (sharp
+    /// quadrants), and the same over the blurred ones where there are any.
+    fn criteria(&self) -> (f64, Option<f64>) {
+        let rate = |a: usize, b: usize| a as f64 / b.max(1) as f64;
+        let sharp = rate(self.family, self.structured) + rate(self.noise_kept, self.stochastic);
+        let soft = (self.soft[0] + self.soft[2] > 0)
+            .then(|| rate(self.soft[1], self.soft[0]) + rate(self.soft[3], self.soft[2]));
+        (sharp, soft)
+    }
 }
 
 fn held_out(corpus: &[Texture], folds: &[Classifier], noise: usize) -> HeldOut {
@@ -423,6 +434,17 @@ fn held_out(corpus: &[Texture], folds: &[Classifier], noise: usize) -> HeldOut {
                 let families: Vec<usize> = order.into_iter().filter(|&k| k != noise).collect();
                 h.family += (families[0] == t.class) as usize;
                 h.family_top3 += families[..3].contains(&t.class) as usize;
+            }
+        }
+        for d in &t.soft {
+            let order = c.order(d);
+            if t.class == noise {
+                h.soft[2] += 1;
+                h.soft[3] += (order[0] == noise) as usize;
+            } else {
+                h.soft[0] += 1;
+                let nearest = order.into_iter().find(|&k| k != noise);
+                h.soft[1] += (nearest == Some(t.class)) as usize;
             }
         }
     }
@@ -446,15 +468,30 @@ fn choose_setting(corpus: &[Texture], names: &[&str]) -> (usize, f64) {
     for &(harmonics, ridge) in &SETTINGS {
         let folds = fold_classifiers(corpus, names.len(), (harmonics, ridge));
         let h = held_out(corpus, &folds, noise);
-        let criterion = h.family as f64 / h.structured.max(1) as f64
-            + h.noise_kept as f64 / h.stochastic.max(1) as f64;
+        // With blurred held-out quadrants, the mean of the sharp and the blurred criteria.
+        let criterion = match h.criteria() {
+            (sharp, Some(soft)) => (sharp + soft) / 2.0,
+            (sharp, None) => sharp,
+        };
         println!(
-            "corpus, {CORPUS_FOLDS} folds by stem held out: harmonics {harmonics} ridge {ridge}: family {}/{}, noise kept {}/{}, criterion {criterion:.4}",
-            h.family, h.structured, h.noise_kept, h.stochastic
+            "corpus, {CORPUS_FOLDS} folds by stem held out: harmonics {harmonics} ridge {ridge}: family {}/{}, noise kept {}/{}; blurred: family {}/{}, noise kept {}/{}; criterion {criterion:.4}",
+            h.family,
+            h.structured,
+            h.noise_kept,
+            h.stochastic,
+            h.soft[1],
+            h.soft[0],
+            h.soft[3],
+            h.soft[2]
         );
         if criterion > best.0 {
             best = (criterion, (harmonics, ridge));
         }
+    }
+    // `CORPUS_LAB_SETTING=H,RIDGE` holds the setting (another option measured at the product's).
+    if let Ok(v) = std::env::var("CORPUS_LAB_SETTING") {
+        let (h, r) = v.split_once(',').expect("CORPUS_LAB_SETTING=H,RIDGE");
+        return (h.parse().unwrap(), r.parse().unwrap());
     }
     best.1
 }
@@ -511,24 +548,55 @@ fn table(labels: &str, dir: &str, out: &str) {
         let cells: Vec<String> = v.iter().map(|x| format!("{x:e}")).collect();
         format!("    [{}],\n", cells.join(", "))
     };
+    // The command that wrote the table, with the options that shaped it.
+    let options: Vec<String> = ["CORPUS_LAB_AUG", "CORPUS_LAB_SETTING"]
+        .iter()
+        .filter_map(|k| Some(format!("{k}={}", std::env::var(k).ok()?)))
+        .collect();
     let mut text = String::from(
-        "//! The family classifier's discriminant ([`crate::family_classifier`]), generated by\n\
-         //! `cargo run --release -p proctex-analyzer --example corpus_lab -- table LABELS DIR OUT`\n\
-         //! from the labelled textures of `tools/corpus/` (`extract.py`).\n\n",
+        "//! The family classifier's discriminant ([`crate::family_classifier`]), generated by\n",
     );
+    if !options.is_empty() {
+        text += &format!("//! `{}`\n", options.join(" "));
+    }
+    text += "//! `cargo run --release -p proctex-analyzer --example corpus_lab -- table LABELS DIR OUT`\n\
+             //! from the labelled textures of `tools/corpus/` (`extract.py`).\n\n";
     let present: Vec<String> = c
         .present
         .iter()
         .map(|&k| format!("{} ({})", names[k], count(k)))
         .collect();
     // The comment wrapped at 100 columns, as the sources are.
-    let words = format!(
-        "Trained on {} textures (four quadrants each, both tone orientations): {}; orientation \
-         harmonics {harmonics}, ridge {ridge} (chosen by {CORPUS_FOLDS}-fold cross-validation over \
-         them, folds by texture stem).",
-        corpus.len(),
-        present.join(", ")
-    );
+    let held = std::env::var("CORPUS_LAB_SETTING").is_ok();
+    let words = match std::env::var("CORPUS_LAB_AUG") {
+        Ok(a) if a.starts_with("blur:") => format!(
+            "Trained on {} textures (four quadrants each, and each quadrant blurred by a Gaussian \
+             of σ {} px, both tone orientations; the blurs chosen by {CORPUS_FOLDS}-fold \
+             cross-validation over them, the held-out quadrants sharp and blurred): {}; \
+             orientation harmonics {harmonics}, ridge {ridge} ({}; {CORPUS_FOLDS} folds by \
+             texture stem).",
+            corpus.len(),
+            a["blur:".len()..].replace(',', " and "),
+            present.join(", "),
+            if held {
+                "held at the setting the same cross-validation chose for the sharp views alone"
+            } else {
+                "chosen by the same cross-validation"
+            }
+        ),
+        _ => format!(
+            "Trained on {} textures (four quadrants each, both tone orientations): {}; orientation \
+             harmonics {harmonics}, ridge {ridge} ({} {CORPUS_FOLDS}-fold cross-validation over \
+             them, folds by texture stem).",
+            corpus.len(),
+            present.join(", "),
+            if held {
+                "held, not chosen by"
+            } else {
+                "chosen by"
+            }
+        ),
+    };
     let mut line = String::from("//");
     for w in words.split(' ') {
         if line.len() + 1 + w.len() > 100 {
@@ -585,26 +653,29 @@ fn eval(labels: &str, dir: &str, dev: &str) {
         names.iter().zip(&counts).collect::<Vec<_>>()
     );
     let (harmonics, ridge) = choose_setting(&corpus, &names);
-    let dev_patches: Vec<(lab_common::Patch, Descriptor)> = lab_common::load(dev)
-        .into_iter()
-        .map(|p| {
-            let d = describe(&p.photo);
-            (p, d)
-        })
-        .collect();
+    // DEVDIR may list several sets, comma-separated (the development set and its degraded copies,
+    // `examples/degraded_set`): each is scored; the first alone feeds the options below.
+    let load_set = |dir: &str| -> Vec<(lab_common::Patch, Descriptor)> {
+        let patches = lab_common::load(dir);
+        let descriptors = proctex::parallel::map_in_order(&patches, |p| describe(&p.photo));
+        patches.into_iter().zip(descriptors).collect()
+    };
+    let sets: Vec<(&str, Vec<(lab_common::Patch, Descriptor)>)> =
+        dev.split(',').map(|d| (d, load_set(d))).collect();
+    let dev_patches = &sets[0].1;
     if let Some(n) = std::env::var("CORPUS_LAB_BOOTSTRAP")
         .ok()
         .and_then(|v| v.parse().ok())
     {
-        bootstrap(&corpus, &dev_patches, n, harmonics, ridge);
+        bootstrap(&corpus, dev_patches, n, harmonics, ridge);
     }
     if let Some(path) = std::env::var_os("CORPUS_LAB_FEATURES") {
-        dump_features(&path, &corpus, &dev_patches, &names, harmonics);
+        dump_features(&path, &corpus, dev_patches, &names, harmonics);
     }
     let all: Vec<&Texture> = corpus.iter().collect();
     let c = Classifier::train(&all, names.len(), harmonics, ridge);
     if let Ok(list) = std::env::var("CORPUS_LAB_PRIORS") {
-        prior_sweep(&list, &corpus, &dev_patches, &c, &names, (harmonics, ridge));
+        prior_sweep(&list, &corpus, dev_patches, &c, &names, (harmonics, ridge));
         return;
     }
     // With `CORPUS_LAB_DEV_FOLDS=K`, each development photo is scored by a discriminant trained
@@ -614,7 +685,7 @@ fn eval(labels: &str, dir: &str, dev: &str) {
         .and_then(|v| v.parse().ok())
         .unwrap_or(0);
     let dev_train = if dev_folds > 0 {
-        dev_textures(&dev_patches, &names)
+        dev_textures(dev_patches, &names)
     } else {
         Vec::new()
     };
@@ -629,51 +700,53 @@ fn eval(labels: &str, dir: &str, dev: &str) {
             Classifier::train(&train, names.len(), harmonics, ridge)
         })
         .collect();
-    let (mut first, mut top3, mut family, mut ns, mut served, mut nt) = (0, 0, 0, 0, 0, 0);
-    for (p, d) in &dev_patches {
-        let c = if dev_folds > 0 {
-            &fold_classifiers[proctex::devset::fold_of(&p.file, dev_folds)]
-        } else {
-            &c
-        };
-        let order = c.order(d);
-        let name = |k: usize| names[k];
-        let labelled = |k: usize| p.labels.iter().any(|l| l == name(k));
-        if std::env::var("CORPUS_LAB_DUMP").is_ok() {
-            let ranked: Vec<&str> = order.iter().map(|&k| name(k)).collect();
-            // The photo's margin: the noise class's distance minus the nearest family's.
-            let ds = c.distances(d);
-            let at = |k: usize| ds[c.present.iter().position(|&q| q == k).unwrap()];
-            let fam = *order.iter().find(|&&k| k != noise).unwrap();
-            eprintln!(
-                "dump\t{}\t{}\t{}\t{}",
-                p.file,
-                p.structured,
-                ranked.join(","),
-                at(noise) - at(fam)
-            );
+    for (set, dev_patches) in &sets {
+        let (mut first, mut top3, mut family, mut ns, mut served, mut nt) = (0, 0, 0, 0, 0, 0);
+        for (p, d) in dev_patches {
+            let c = if dev_folds > 0 {
+                &fold_classifiers[proctex::devset::fold_of(&p.file, dev_folds)]
+            } else {
+                &c
+            };
+            let order = c.order(d);
+            let name = |k: usize| names[k];
+            let labelled = |k: usize| p.labels.iter().any(|l| l == name(k));
+            if std::env::var("CORPUS_LAB_DUMP").is_ok() {
+                let ranked: Vec<&str> = order.iter().map(|&k| name(k)).collect();
+                // The photo's margin: the noise class's distance minus the nearest family's.
+                let ds = c.distances(d);
+                let at = |k: usize| ds[c.present.iter().position(|&q| q == k).unwrap()];
+                let fam = *order.iter().find(|&&k| k != noise).unwrap();
+                eprintln!(
+                    "dump\t{}\t{}\t{}\t{}",
+                    p.file,
+                    p.structured,
+                    ranked.join(","),
+                    at(noise) - at(fam)
+                );
+            }
+            if p.structured {
+                ns += 1;
+                first += labelled(order[0]) as usize;
+                top3 += order.iter().take(3).any(|&k| labelled(k)) as usize;
+                family += order
+                    .iter()
+                    .find(|&&k| k != noise)
+                    .is_some_and(|&k| labelled(k)) as usize;
+            } else {
+                nt += 1;
+                served += (order[0] == noise) as usize;
+            }
         }
-        if p.structured {
-            ns += 1;
-            first += labelled(order[0]) as usize;
-            top3 += order.iter().take(3).any(|&k| labelled(k)) as usize;
-            family += order
-                .iter()
-                .find(|&&k| k != noise)
-                .is_some_and(|&k| labelled(k)) as usize;
-        } else {
-            nt += 1;
-            served += (order[0] == noise) as usize;
-        }
+        println!(
+            "{set}: development set ({}), harmonics {harmonics} ridge {ridge} (chosen on the corpus): structured first {first}/{ns}, top three {top3}/{ns}, nearest family labelled {family}/{ns}; stochastic → noise {served}/{nt}",
+            if dev_folds > 0 {
+                format!("{dev_folds} folds by photo held out, the others trained on")
+            } else {
+                "never trained on".to_string()
+            }
+        );
     }
-    println!(
-        "development set ({}), harmonics {harmonics} ridge {ridge} (chosen on the corpus): structured first {first}/{ns}, top three {top3}/{ns}, nearest family labelled {family}/{ns}; stochastic → noise {served}/{nt}",
-        if dev_folds > 0 {
-            format!("{dev_folds} folds by photo held out, the others trained on")
-        } else {
-            "never trained on".to_string()
-        }
-    );
     if let Some(other) = std::env::var_os("CORPUS_LAB_ALSO") {
         // Unlabelled photos (the shipped samples): each quadrant's nearest class and family.
         let dir = other.to_string_lossy().to_string();
