@@ -6,7 +6,8 @@ use proctex::gabor::Descriptor;
 use proctex::input::Photo;
 use proctex::retrieve::RANK_SIZE;
 
-/// The training-only views of a texture ([`super::Texture::extra`]): none unless `CORPUS_LAB_AUG` asks.
+/// The training-only views of a texture ([`super::Texture::extra`]): none unless
+/// `CORPUS_LAB_AUG` asks.
 ///
 /// - `half` (measured, not kept): the quadrants of the texture reduced to half its size (the
 ///   material at another scale, as photos show it), where they are at least 64 pixels wide. Held
@@ -59,7 +60,7 @@ pub fn describe_blurred(photo: &Photo, sigma: f32) -> Descriptor {
     describe(&blurred(reduced.as_ref().unwrap_or(photo), sigma))
 }
 
-/// The held-out corpus quadrants blurred by `CORPUS_LAB_HELD_BLUR=σ` as well ([`HeldOut`]'s
+/// The held-out corpus quadrants blurred by `CORPUS_LAB_HELD_BLUR=σ` as well ([`super::HeldOut`]'s
 /// second count): how the classifier does on softer photos of textures it has not seen, measured
 /// on the corpus alone.
 pub fn held_blur() -> Option<f32> {
