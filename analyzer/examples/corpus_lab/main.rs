@@ -404,8 +404,17 @@ struct HeldOut {
     stochastic: usize,
     /// Stochastic quadrants with the noise class first.
     noise_kept: usize,
-    /// The same counts over the blurred quadrants ([`Texture::soft`]), in the same order.
-    soft: [usize; 4],
+    /// The counts over the blurred quadrants ([`Texture::soft`]; top three not counted).
+    soft: SoftCounts,
+}
+
+/// [`HeldOut`]'s counts over the blurred held-out quadrants.
+#[derive(Default)]
+struct SoftCounts {
+    structured: usize,
+    family: usize,
+    stochastic: usize,
+    noise_kept: usize,
 }
 
 impl HeldOut {
@@ -414,8 +423,9 @@ impl HeldOut {
     fn criteria(&self) -> (f64, Option<f64>) {
         let rate = |a: usize, b: usize| a as f64 / b.max(1) as f64;
         let sharp = rate(self.family, self.structured) + rate(self.noise_kept, self.stochastic);
-        let soft = (self.soft[0] + self.soft[2] > 0)
-            .then(|| rate(self.soft[1], self.soft[0]) + rate(self.soft[3], self.soft[2]));
+        let s = &self.soft;
+        let soft = (s.structured + s.stochastic > 0)
+            .then(|| rate(s.family, s.structured) + rate(s.noise_kept, s.stochastic));
         (sharp, soft)
     }
 }
@@ -439,12 +449,12 @@ fn held_out(corpus: &[Texture], folds: &[Classifier], noise: usize) -> HeldOut {
         for d in &t.soft {
             let order = c.order(d);
             if t.class == noise {
-                h.soft[2] += 1;
-                h.soft[3] += (order[0] == noise) as usize;
+                h.soft.stochastic += 1;
+                h.soft.noise_kept += (order[0] == noise) as usize;
             } else {
-                h.soft[0] += 1;
+                h.soft.structured += 1;
                 let nearest = order.into_iter().find(|&k| k != noise);
-                h.soft[1] += (nearest == Some(t.class)) as usize;
+                h.soft.family += (nearest == Some(t.class)) as usize;
             }
         }
     }
@@ -479,10 +489,10 @@ fn choose_setting(corpus: &[Texture], names: &[&str]) -> (usize, f64) {
             h.structured,
             h.noise_kept,
             h.stochastic,
-            h.soft[1],
-            h.soft[0],
-            h.soft[3],
-            h.soft[2]
+            h.soft.family,
+            h.soft.structured,
+            h.soft.noise_kept,
+            h.soft.stochastic
         );
         if criterion > best.0 {
             best = (criterion, (harmonics, ridge));
