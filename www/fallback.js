@@ -1,7 +1,8 @@
 // The page without WebGPU: the app's canvas cannot start, but a photo can still be opened,
 // dropped or pasted and analysed in the worker. Each analysis is shown as the CPU reference
 // render of its params, with the photo-vs-model plots (radial spectrum, channel histograms)
-// and the exports that need no GPU (params JSON, WGSL and GLSL shaders).
+// and the exports that need no GPU (params JSON, WGSL and GLSL shaders), and the app's lighting
+// option (the photo's lighting gradient divided out before the analysis).
 
 const message = document.getElementById('message');
 const el = (tag, props = {}, text = '') => {
@@ -11,7 +12,8 @@ const el = (tag, props = {}, text = '') => {
 };
 
 // Builds the fallback panel in the message box. `ctx`: { openFile, download(name, text),
-// exportShader(paramsJson, format) }.
+// exportShader(paramsJson, format), setLighting(on): the option set and the photo analysed
+// again }.
 export function startFallback(notice, ctx) {
   message.className = 'fallback';
   message.style.display = 'block';
@@ -35,6 +37,20 @@ export function startFallback(notice, ctx) {
       ctx.exportShader(params, 'glsl'))),
   ];
   exports.forEach((b) => { b.disabled = true; });
+  // The same option as the app's, with its words: off by default, since on evenly lit photos it
+  // usually costs more than it gains.
+  const lighting = el('input', { id: 'fallback_lighting', type: 'checkbox', disabled: true });
+  lighting.addEventListener('change', () => {
+    lighting.disabled = true; // until the photo's analysis with the option comes back
+    ctx.setLighting(lighting.checked);
+  });
+  const option = el('label', {
+    title: "Divide the photo's lighting gradient out before the analysis (the plane through " +
+      'its log luminance): for a photo lit from one side, whose texture should not carry the ' +
+      'light. On evenly lit photos it usually costs more than it gains, so it is off by default',
+  });
+  option.append(lighting, ' Even out lighting');
+  buttons.appendChild(option);
   const plots = el('canvas', { id: 'cpu_plots', width: 384, height: 150 });
   plots.hidden = true;
   message.append(status, error, buttons, plots);
@@ -44,10 +60,12 @@ export function startFallback(notice, ctx) {
       const report = JSON.parse(reportJson);
       params = JSON.stringify(report.params);
       exports.forEach((b) => { b.disabled = false; });
+      lighting.disabled = false;
       error.textContent = '';
       const model = report.params.model.pattern?.kind ?? report.params.model.kind;
-      status.textContent = `${name}: analysed in ${Math.round(ms)} ms (${model} model). Below: ` +
-        'its CPU reference rendering, and the photo (solid) against the model (dashed).';
+      const evened = report.params.source?.flattened_lighting ? ', lighting evened out' : '';
+      status.textContent = `${name}: analysed in ${Math.round(ms)} ms (${model} model${evened}). ` +
+        'Below: its CPU reference rendering, and the photo (solid) against the model (dashed).';
       const canvas = document.getElementById('cpu_preview');
       canvas.width = size; canvas.height = size;
       canvas.getContext('2d').putImageData(
@@ -56,7 +74,10 @@ export function startFallback(notice, ctx) {
       drawPlots(plots, report.photo, report.model);
       plots.hidden = false;
     },
-    showError(text) { error.textContent = text; },
+    showError(text) {
+      error.textContent = text;
+      lighting.disabled = params === null;
+    },
   };
 }
 

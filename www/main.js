@@ -600,6 +600,12 @@ async function cpuFallback(notice) {
     openFile: () => fileInput.click(),
     download: downloadText,
     exportShader: (params, format) => wasm.exportShader(params, format),
+    // The worker takes the option for every analysis from now on; the current photo is
+    // analysed again with it (a crop job over the whole photo, at the analysis seed 1).
+    setLighting: (on) => {
+      worker.postMessage({ type: 'setFlattenLighting', on });
+      analysePhoto({ type: 'crop', crop: [], seed: 1 }, [], 'the photo');
+    },
   });
   installPhotoInputs();
   await loadStartupSample();

@@ -213,7 +213,7 @@ test('after one visit the page loads and analyses a dropped photo offline', asyn
   }
 });
 
-test('without WebGPU a dropped photo is still analysed, previewed, plotted and exportable', async ({ page }) => {
+test('without WebGPU a dropped photo is still analysed, previewed, plotted, exportable and evened out', async ({ page }) => {
   await page.addInitScript(() => { delete Navigator.prototype.gpu; });
   await page.goto('/');
   await page.waitForFunction(() => window.proctex && window.proctex.ready, null, { timeout: 120_000 });
@@ -228,6 +228,12 @@ test('without WebGPU a dropped photo is still analysed, previewed, plotted and e
   await page.locator('#fallback_wgsl').click();
   const wgsl = fs.readFileSync(await (await download).path(), 'utf8');
   expect(wgsl).toContain('fn proctex(');
+  // The lighting option, as in the app: the photo analysed again with its gradient divided out.
+  await expect(page.locator('#fallback_status')).not.toContainText('lighting evened out');
+  await page.locator('#fallback_lighting').check();
+  await expect(page.locator('#fallback_status')).toContainText('lighting evened out', { timeout: 120_000 });
+  await expect(page.locator('#fallback_status')).toContainText('gravel_drop.png');
+  await expect(page.locator('#fallback_lighting')).toBeEnabled();
   // A file that is no image is reported in the panel, and the last result stays.
   await dropBytes(page, Buffer.from('not an image'), 'junk.png');
   await expect(page.locator('#fallback_error')).toContainText('junk.png');
