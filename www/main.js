@@ -175,8 +175,9 @@ let lastTimings = null;
 
 // `suggest: false`: the model suggestions wait until the user asks (the start-up sample: its
 // 20–40 s of refinement would compete with the first frames and delay the analysis of the
-// user's own first photo, and most users replace the sample at once).
-async function loadImage(bytes, name = 'image', { suggest = true } = {}) {
+// user's own first photo, and most users replace the sample at once). The page without WebGPU
+// shows no list, so it never asks for one.
+async function loadImage(bytes, name = 'image', { suggest = fallback === null } = {}) {
   const copy = new Uint8Array(bytes); // transferable, whatever the caller passed
   return analysePhoto({ type: 'open', bytes: copy, name, suggest }, [copy.buffer], name);
 }
@@ -189,7 +190,8 @@ async function loadStartupSample() {
 
 async function loadPixels(rgba, width, height, name) {
   const copy = new Uint8Array(rgba);
-  return analysePhoto({ type: 'pixels', rgba: copy, width, height, name }, [copy.buffer], name);
+  return analysePhoto({ type: 'pixels', rgba: copy, width, height, name, suggest: fallback === null },
+    [copy.buffer], name);
 }
 
 // Crop re-analysis: requests while one runs are coalesced into the latest.
@@ -604,7 +606,7 @@ async function cpuFallback(notice) {
     // analysed again with it (a crop job over the whole photo, at the analysis seed 1).
     setLighting: (on) => {
       worker.postMessage({ type: 'setFlattenLighting', on });
-      analysePhoto({ type: 'crop', crop: [], seed: 1 }, [], 'the photo');
+      analysePhoto({ type: 'crop', crop: [], seed: 1, suggest: false }, [], 'the photo');
     },
   });
   installPhotoInputs();

@@ -83,7 +83,7 @@ async function handle(m) {
       const image = new ImageData(new Uint8ClampedArray(m.rgba.buffer), m.width, m.height);
       const bitmap = await createImageBitmap(image);
       try {
-        await analyseNew(m.id, m.name, bitmap, t0, 0, true);
+        await analyseNew(m.id, m.name, bitmap, t0, 0, m.suggest !== false);
       } catch (e) {
         throw new Error(`${m.name}: ${e.message ?? e}`);
       }
@@ -102,14 +102,17 @@ async function handle(m) {
     }
     case 'crop': {
       if (!photo) throw new Error('no photo to crop');
-      // The crop at the seed the app asks for, with the lighting option as it is now.
+      // The crop at the seed the app asks for, with the lighting option as it is now;
+      // `suggest: false` (the page without WebGPU, which shows no list): no suggestions.
+      const suggest = m.suggest !== false;
       const request = { crop: m.crop, seed: m.seed, flatten: flattenLighting };
-      const ahead = sendAhead(photo, request);
+      const ahead = suggest ? sendAhead(photo, request) : null;
       const report = wasm.analyzeRgba(photo.rgba, photo.width, photo.height,
         new Uint32Array(m.crop), m.seed, request.flatten);
       photo.request = request;
       postMessage({ type: 'analysis', id: m.id, name: photo.name, report, ms: performance.now() - t0 });
-      await startSuggestions(photo, m.id, request, ahead, t0, report);
+      if (suggest) await startSuggestions(photo, m.id, request, ahead, t0, report);
+      else dropSuggestion();
       return;
     }
     case 'suggest': {
