@@ -17,7 +17,7 @@ use proctex::db::Db;
 use proctex::noise::Tile;
 use proctex::render::{Prepared, View, render_prepared};
 use proctex::scattering::{DEVIATIONS, ORIENTATIONS, SCALES, features};
-use proctex::structure::FinalFit;
+use proctex::structure::FirstRound;
 
 /// Whether feature `i` of [`features`] involves the finest scale (the layout its doc gives:
 /// per scale a log mean, then per scale two harmonics, then per pair of scales `j1 < j2` one
@@ -55,10 +55,9 @@ fn main() {
             return "-inf\t-inf".to_string();
         };
         let (pattern, swapped) = family.pattern.as_ref().expect("a family");
-        let fit = FinalFit::new(db, &p.photo, pattern, &opts, *swapped);
-        let first: Vec<usize> = (0..fit.amplitudes()).collect();
-        let first = proctex::parallel::map_in_order(&first, |&k| fit.amplitude(db, k));
-        let round = fit.finish(first).params;
+        let round = FirstRound::new(db, &p.photo, pattern, &opts, *swapped)
+            .amplitude_fit()
+            .params;
         let render = |params: &proctex::params::Params| {
             let prepared = Prepared::new(params);
             let (w, h) = (p.photo.width, p.photo.height);

@@ -22,7 +22,7 @@ use proctex::noise::Tile;
 use proctex::render::{Prepared, View, render_prepared};
 use proctex::retrieve::nearer_render_margin;
 use proctex::scattering::{SIDE, features, standardised_distance};
-use proctex::structure::{FinalFit, fit_structured};
+use proctex::structure::{FirstRound, fit_structured};
 use std::time::Instant;
 
 const PATCHES: [&str; 4] = ["top-left", "top-right", "bottom-left", "bottom-right"];
@@ -54,10 +54,9 @@ fn main() {
                 // The final fit's first round alone (the residual's amplitude; no rougher
                 // variants).
                 let start = Instant::now();
-                let fit = FinalFit::new(db, &p.photo, pattern, &opts, *swapped);
-                let first: Vec<usize> = (0..fit.amplitudes()).collect();
-                let first = proctex::parallel::map_in_order(&first, |&k| fit.amplitude(db, k));
-                let amplitude_only = fit.finish(first).params;
+                let amplitude_only = FirstRound::new(db, &p.photo, pattern, &opts, *swapped)
+                    .amplitude_fit()
+                    .params;
                 let amplitude_ms = start.elapsed().as_secs_f64() * 1000.0;
                 let margin_amplitude =
                     nearer_render_margin(&p.photo, noise, &amplitude_only, &tile);
