@@ -3,7 +3,7 @@
 //! WGSL has no `#include`; modules are concatenated in a fixed order. Each WGSL function has a
 //! Rust twin in the analyzer (the CPU reference renderer); `tests/twins.rs` checks that every
 //! function here names one, `tests/validate.rs` validates every composed shader with naga, and
-//! `tests/gpu_vs_cpu.rs` renders on a real (or software) GPU and compares with
+//! `web/tests/gpu_vs_cpu/` renders on a real (or software) GPU and compares with
 //! `proctex::render::render`.
 
 /// Uniform block layout and bindings of the texture parameters.
