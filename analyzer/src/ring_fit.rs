@@ -313,8 +313,8 @@ mod tests {
         }
     }
 
-    /// The rings of a `w × h` image whose power density is `density(f²)` (`f` in cycles per
-    /// pixel), as [`ring_powers`] sums them.
+    /// The rings of a `w × h` image whose power density at fine bin `t` and squared frequency
+    /// `f²` (cycles per pixel) is `density_at(t, f²)`, as [`ring_powers`] sums them.
     fn rings_of(w: usize, h: usize, density_at: impl Fn(usize, f32) -> f64) -> RingPowers {
         let mut rings = RingPowers::default();
         for q in 0..w {
