@@ -13,7 +13,7 @@
 //! power there, `B_jr` the ring's share of a unit band `j` (from the bands' measured radial power
 //! densities, [`RING_DENSITY`], summed over the ring's actual FFT bins so that the coarse rings'
 //! few bins are counted as they are). Every ring counts alike, as in the fidelity protocol's
-//! spectrum distance. It is solved by Gauss–Newton steps on `w² ≥ 0` (each a weighted
+//! spectrum distance. It is solved by Gauss–Newton steps on `w² ≥ 0` (each a
 //! non-negative least squares by coordinate descent) with step halving.
 //!
 //! Where this departs from a statistician's fit: `ln P_r` has variance about `1/n_r` (`n_r` the
@@ -98,8 +98,6 @@ pub fn fit_weights_by(
     let floor = total * 1e-9;
     let rows: Vec<usize> = (0..n_rings).filter(|&r| n[r] > 0.0).collect();
     let target: Vec<f64> = rows.iter().map(|&r| p[r].max(floor).ln()).collect();
-    // Every ring alike (the module's header says why not by its bin count).
-    let weight: Vec<f64> = vec![1.0; rows.len()];
     let model = |v: &[f64]| -> Vec<f64> {
         rows.iter()
             .map(|&r| {
@@ -113,8 +111,7 @@ pub fn fit_weights_by(
     let objective = |m: &[f64]| -> f64 {
         m.iter()
             .zip(&target)
-            .zip(&weight)
-            .map(|((mi, t), wt)| wt * (mi.ln() - t).powi(2))
+            .map(|(mi, t)| (mi.ln() - t).powi(2))
             .sum()
     };
     // Start: the given variances, every band at least a small share so that the model is
@@ -126,16 +123,17 @@ pub fn fit_weights_by(
     let mut m = model(&v);
     let mut f = objective(&m);
     for _ in 0..GAUSS_NEWTON_STEPS {
-        // Linearised: Σ_j (B_rj / M_r) v_j ≈ 1 + ln P_r − ln M_r, weighted, v ≥ 0.
+        // Linearised: Σ_j (B_rj / M_r) v_j ≈ 1 + ln P_r − ln M_r, every ring alike (the
+        // module's header says why not by its bin count), v ≥ 0.
         let mut g = vec![vec![0.0f64; nb]; nb];
         let mut c = vec![0.0f64; nb];
         for (k, &r) in rows.iter().enumerate() {
             let rhs = 1.0 + target[k] - m[k].ln();
             for i in 0..nb {
                 let ai = b[r][i] / m[k];
-                c[i] += weight[k] * ai * rhs;
+                c[i] += ai * rhs;
                 for jj in 0..nb {
-                    g[i][jj] += weight[k] * ai * b[r][jj] / m[k];
+                    g[i][jj] += ai * b[r][jj] / m[k];
                 }
             }
         }

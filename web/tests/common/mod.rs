@@ -95,8 +95,27 @@ pub fn read_rgb8(gpu: &Gpu, target: &wgpu::Texture, w: u32, h: u32) -> Vec<u8> {
 
 /// A `w × h` rgba8unorm render target that can be read back.
 pub fn rgba8_target(gpu: &Gpu, w: u32, h: u32) -> wgpu::Texture {
+    render_target(
+        gpu,
+        "target",
+        w,
+        h,
+        wgpu::TextureFormat::Rgba8Unorm,
+        wgpu::TextureUsages::empty(),
+    )
+}
+
+/// A `w × h` 2D render target of `format` that can be read back, with `usage` besides.
+pub fn render_target(
+    gpu: &Gpu,
+    label: &str,
+    w: u32,
+    h: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
     gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("target"),
+        label: Some(label),
         size: wgpu::Extent3d {
             width: w,
             height: h,
@@ -105,8 +124,8 @@ pub fn rgba8_target(gpu: &Gpu, w: u32, h: u32) -> wgpu::Texture {
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC | usage,
         view_formats: &[],
     })
 }

@@ -1,7 +1,7 @@
 //! The noise tiles baked on the GPU by the exported snippets' passes (`shaders/bake2.wgsl`,
 //! `bake3.wgsl`) against `noise::Tile`.
 
-use crate::common::{Gpu, gpu, read_texture};
+use crate::common::{Gpu, gpu, read_texture, render_target};
 use proctex_web::renderer::{clear_pass, full_screen_pipeline};
 
 /// Runs one full-screen fragment pass of `module` into a new `w × h` rgba32float texture.
@@ -14,22 +14,14 @@ fn bake_pass(
     h: u32,
 ) -> wgpu::Texture {
     let format = wgpu::TextureFormat::Rgba32Float;
-    let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(entry),
-        size: wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
+    let target = render_target(
+        gpu,
+        entry,
+        w,
+        h,
         format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
+        wgpu::TextureUsages::TEXTURE_BINDING,
+    );
     let pipeline = full_screen_pipeline(&gpu.device, None, module, "vs_bake", entry, format);
     let group = src.map(|t| {
         let view = t.create_view(&wgpu::TextureViewDescriptor::default());
